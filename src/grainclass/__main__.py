@@ -1,0 +1,3 @@
+from grainclass.cli import cli
+
+cli()

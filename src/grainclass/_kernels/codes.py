@@ -1,0 +1,34 @@
+"""Integer codes that the kernels write and the Python wrappers turn into words.
+
+Kept as plain module-level ints so that numba folds them as constants.
+"""
+
+# Grain status (the ``status`` column).
+OK = 0
+DEGENERATE = 1
+NON_SIMPLE = 2
+INVALID = 3
+STATUS_NAMES = ("ok", "degenerate", "non_simple", "invalid")
+
+# What is wrong with a grain; the kernels also write two integers (a, b) of detail.
+E_NONE = 0
+E_PARSE = 1  # the reader could not parse the record (message comes from the reader)
+E_TOO_FEW_FACES = 2  # a = number of faces
+E_INDEX_RANGE = 3  # face a lists face b, which does not exist
+E_SELF = 4  # face a lists itself
+E_ASYMMETRIC = 5  # face a lists face b, but face b does not list face a as often
+E_FEW_NEIGHBOURS = 6  # face a has b < 2 neighbours
+E_TWO_GON = 7  # face a has only two neighbours (degenerate)
+E_SHARED_EDGES = 8  # faces a and b share b > 1 edges (degenerate)
+E_DISCONNECTED = 9  # face a cannot be reached from face 0
+E_TOO_MANY_EDGES = 10  # a adjacencies, but a sphere with n faces has at most b = 3n - 6
+E_EULER = 11  # the neighbour lists describe a surface of Euler characteristic a, not 2
+E_UNORDERED = 12  # not a triangulation and the lists are not cyclic: cannot embed
+E_NOT_SPHERE = 13  # 3n - 6 adjacencies but no sphere (the triangle at face a is wrong)
+E_NON_SIMPLE = 14  # a corner where a > 3 faces meet, one of them face b
+
+# Families (the ``family`` column); -1 when the grain is not ok.
+STACKED = 0
+FLAG = 1
+SC = 2
+FAMILY_NAMES = ("stacked", "flag", "sc")

@@ -1,0 +1,122 @@
+"""Truncation trees (Lutz et al. Sec. II.B) written as one canonical string per grain.
+
+A removed vertex w was stacked onto the triangle formed by its three neighbours at removal time.
+That triangle was created by the most recently stacked of them, i.e. by the one removed earliest:
+that vertex is w's parent; a w whose link is all fundamental is a root. Neighbours in a link are
+adjacent, and adjacent degree-3 vertices never go in the same round, so the parent is unique.
+
+Canonical form: a tree is ``(`` + its children's strings in ascending byte order + ``)``; the
+forest is its trees sorted by (length, string) joined by ``+``.
+"""
+
+import numpy as np
+
+from grainclass._numba import njit
+
+OPEN, CLOSE, PLUS = 40, 41, 43  # "(", ")", "+"
+
+
+@njit
+def _less(buf, a_start, a_len, b_start, b_len):
+    """Byte-wise lexicographic ``buf[a] < buf[b]`` for two slices of one buffer."""
+    for i in range(min(a_len, b_len)):
+        if buf[a_start + i] != buf[b_start + i]:
+            return buf[a_start + i] < buf[b_start + i]
+    return a_len < b_len
+
+
+@njit
+def _sort_slices(items, count, buf, start, length, by_length_first):
+    """Insertion sort of ``items[:count]`` (node ids) by their strings ``buf[start:start+length]``."""
+    for i in range(1, count):
+        item = items[i]
+        j = i - 1
+        while j >= 0:
+            other = items[j]
+            if by_length_first and length[other] != length[item]:
+                greater = length[other] > length[item]
+            else:
+                greater = _less(buf, start[item], length[item], start[other], length[other])
+            if not greater:
+                break
+            items[j + 1] = other
+            j -= 1
+        items[j + 1] = item
+
+
+@njit
+def _truncation_forest(n, alive, removed_round, link, out):
+    """Write the canonical forest string into ``out`` (uint8, at least 3n long).
+
+    Returns ``(n_trees, depth, length)``: depth is the number of vertices on a longest root
+    path. O(t^2) for t truncations.
+    """
+    parent = np.full(n, -1, np.int32)
+    n_nodes = 0
+    last_round = 0
+    for v in range(n):
+        if alive[v]:
+            continue
+        n_nodes += 1
+        last_round = max(last_round, removed_round[v])
+        best = -1
+        for k in range(3):
+            x = link[v, k]
+            if not alive[x] and (best < 0 or removed_round[x] < removed_round[best]):
+                best = x
+        parent[v] = best
+    # Children in CSR form.
+    n_children = np.zeros(n + 1, np.int32)
+    for v in range(n):
+        if parent[v] >= 0:
+            n_children[parent[v] + 1] += 1
+    child_off = np.cumsum(n_children)
+    children = np.empty(max(n_nodes, 1), np.int32)
+    fill = child_off[:-1].copy()
+    for v in range(n):
+        if parent[v] >= 0:
+            children[fill[parent[v]]] = v
+            fill[parent[v]] += 1
+    # Children are removed in earlier rounds than their parent: build strings round by round.
+    buf = np.empty(n_nodes * (n_nodes + 1) + 1, np.uint8)
+    start = np.zeros(n, np.int64)
+    length = np.zeros(n, np.int64)
+    height = np.zeros(n, np.int32)
+    pos = 0
+    for rnd in range(1, last_round + 1):
+        for v in range(n):
+            if alive[v] or removed_round[v] != rnd:
+                continue
+            first, count = child_off[v], child_off[v + 1] - child_off[v]
+            kids = children[first : first + count]
+            _sort_slices(kids, count, buf, start, length, False)
+            start[v] = pos
+            buf[pos] = OPEN
+            pos += 1
+            tallest = 0
+            for c in kids:
+                buf[pos : pos + length[c]] = buf[start[c] : start[c] + length[c]]
+                pos += length[c]
+                tallest = max(tallest, height[c])
+            buf[pos] = CLOSE
+            pos += 1
+            length[v] = pos - start[v]
+            height[v] = tallest + 1
+    roots = np.empty(max(n_nodes, 1), np.int32)
+    n_roots = 0
+    depth = 0
+    for v in range(n):
+        if not alive[v] and parent[v] < 0:
+            roots[n_roots] = v
+            n_roots += 1
+            depth = max(depth, height[v])
+    _sort_slices(roots, n_roots, buf, start, length, True)
+    written = 0
+    for r in range(n_roots):
+        if r > 0:
+            out[written] = PLUS
+            written += 1
+        v = roots[r]
+        out[written : written + length[v]] = buf[start[v] : start[v] + length[v]]
+        written += length[v]
+    return n_roots, depth, written

@@ -1,0 +1,105 @@
+"""`GrainBatch`: a chunk of grains held as flat arrays, the unit that flows from readers to kernels."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+
+@dataclass(frozen=True)
+class GrainBatch:
+    """Grains from one input, as CSR arrays of face adjacencies.
+
+    Attributes
+    ----------
+    source : str
+        Name of the input (a path, or ``-`` for standard input).
+    grain_id : list of str
+        One id per grain.
+    location : numpy.ndarray of int64, shape (G,)
+        Where each grain starts in the input: a line number (text) or record number (binary).
+    location_kind : str
+        ``"line"`` or ``"record"``.
+    face_offsets : numpy.ndarray of int64, shape (G + 1,)
+        Grain ``g`` has faces ``face_offsets[g]:face_offsets[g + 1]``.
+    nbr_offsets : numpy.ndarray of int64, shape (F + 1,)
+        Face ``f`` has the neighbours ``neighbors[nbr_offsets[f]:nbr_offsets[f + 1]]``.
+    neighbors : numpy.ndarray of int32, shape (M,)
+        0-based indices of neighbouring faces, local to the grain, in cyclic order where known.
+    parse_error : list of (str or None)
+        Why a grain could not be read (it then has no faces), or None.
+    volume, area : numpy.ndarray of float64, shape (G,), optional
+        Grain volume and surface area where the input gives them (NaN where it does not).
+    attributes : dict of str to list of (str or None)
+        Further ``key=value`` fields of the input, kept as string columns.
+    """
+
+    source: str
+    grain_id: list[str]
+    location: np.ndarray
+    location_kind: str
+    face_offsets: np.ndarray
+    nbr_offsets: np.ndarray
+    neighbors: np.ndarray
+    parse_error: list[str | None]
+    volume: np.ndarray | None = None
+    area: np.ndarray | None = None
+    attributes: dict[str, list[str | None]] = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        # Coerce once at the boundary so that the kernels see one layout only.
+        for name, dtype in (
+            ("location", np.int64),
+            ("face_offsets", np.int64),
+            ("nbr_offsets", np.int64),
+            ("neighbors", np.int32),
+        ):
+            object.__setattr__(self, name, np.ascontiguousarray(getattr(self, name), dtype=dtype))
+        g = len(self.grain_id)
+        if self.face_offsets.shape != (g + 1,) or self.face_offsets[0] != 0:
+            raise ValueError("face_offsets must have one entry per grain plus a leading 0")
+        if self.nbr_offsets.shape != (self.face_offsets[-1] + 1,) or self.nbr_offsets[0] != 0:
+            raise ValueError("nbr_offsets must have one entry per face plus a leading 0")
+        if self.neighbors.shape != (self.nbr_offsets[-1],):
+            raise ValueError("neighbors must end where nbr_offsets says")
+        if len(self.location) != g or len(self.parse_error) != g:
+            raise ValueError("location and parse_error need one entry per grain")
+
+    def __len__(self) -> int:
+        return len(self.grain_id)
+
+    @property
+    def n_faces(self) -> np.ndarray:
+        """Number of faces of each grain (int64, shape (G,))."""
+        return np.diff(self.face_offsets)
+
+    @classmethod
+    def from_lists(
+        cls,
+        grains: list[list[list[int]]],
+        *,
+        grain_id: list[str] | None = None,
+        source: str = "<memory>",
+    ) -> GrainBatch:
+        """Build a batch from Python lists: ``grains[g][f]`` lists the neighbours of face ``f``.
+
+        Examples
+        --------
+        >>> cube = [[1, 2, 3, 4], [0, 4, 5, 2], [0, 1, 5, 3], [0, 2, 5, 4], [0, 3, 5, 1], [1, 4, 3, 2]]
+        >>> GrainBatch.from_lists([cube]).n_faces.tolist()
+        [6]
+        """
+        n_faces = [len(faces) for faces in grains]
+        degrees = [len(nbrs) for faces in grains for nbrs in faces]
+        flat = [x for faces in grains for nbrs in faces for x in nbrs]
+        return cls(
+            source=source,
+            grain_id=grain_id if grain_id is not None else [str(i + 1) for i in range(len(grains))],
+            location=np.arange(1, len(grains) + 1),
+            location_kind="record",
+            face_offsets=np.concatenate([[0], np.cumsum(n_faces, dtype=np.int64)]),
+            nbr_offsets=np.concatenate([[0], np.cumsum(degrees, dtype=np.int64)]),
+            neighbors=np.asarray(flat, dtype=np.int32),
+            parse_error=[None] * len(grains),
+        )

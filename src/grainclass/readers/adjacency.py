@@ -1,0 +1,147 @@
+"""The adjacency text format: one grain per line, the project's own format.
+
+``id<TAB>faces[<TAB>key=value...]`` where faces are separated by ``;`` and each face lists the
+0-based indices of its neighbouring faces, separated by spaces, in cyclic order. Blank lines and
+lines starting with ``#`` are skipped. ``volume`` and ``area`` are read as floats; other keys are
+kept as string columns.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Iterator
+
+import numpy as np
+
+from grainclass.batch import GrainBatch
+
+FLOAT_KEYS = ("volume", "area")
+
+
+class _Chunk:
+    """Accumulates parsed lines until a batch is full."""
+
+    def __init__(self, source: str) -> None:
+        self.source = source
+        self.grain_id: list[str] = []
+        self.location: list[int] = []
+        self.n_faces: list[int] = []
+        self.degrees: list[int] = []
+        self.neighbors: list[int] = []
+        self.parse_error: list[str | None] = []
+        self.floats: dict[str, list[float]] = {key: [] for key in FLOAT_KEYS}
+        self.attributes: dict[str, list[str | None]] = {}
+
+    def __len__(self) -> int:
+        return len(self.grain_id)
+
+    def add(self, line_no: int, line: str) -> None:
+        fields = line.split("\t")
+        grain_id = fields[0].strip()
+        values: dict[str, str] = {}
+        try:
+            if len(fields) < 2:
+                raise ValueError("expected a grain id, a TAB and the faces")
+            faces = _parse_faces(fields[1])
+            for text in fields[2:]:
+                key, sep, value = text.partition("=")
+                if not sep or not key.strip():
+                    raise ValueError(f"field {text!r} is not key=value")
+                values[key.strip()] = value.strip()
+            floats = {key: float(values.pop(key, "nan")) for key in FLOAT_KEYS}
+        except ValueError as exc:
+            self.add_unreadable(line_no, grain_id, str(exc))
+            return
+        self._append(line_no, grain_id, faces, floats, values, None)
+
+    def add_unreadable(self, line_no: int, grain_id: str, error: str) -> None:
+        self._append(line_no, grain_id, [], dict.fromkeys(FLOAT_KEYS, np.nan), {}, error)
+
+    def _append(
+        self,
+        line_no: int,
+        grain_id: str,
+        faces: list[list[int]],
+        floats: dict[str, float],
+        values: dict[str, str],
+        error: str | None,
+    ) -> None:
+        g = len(self.grain_id)
+        self.grain_id.append(grain_id or f"line{line_no}")
+        self.location.append(line_no)
+        self.parse_error.append(error)
+        self.n_faces.append(len(faces))
+        for nbrs in faces:
+            self.degrees.append(len(nbrs))
+            self.neighbors.extend(nbrs)
+        for key in FLOAT_KEYS:
+            self.floats[key].append(floats[key])
+        for key, value in values.items():
+            self.attributes.setdefault(key, [None] * g).append(value)
+        for column in self.attributes.values():
+            if len(column) == g:
+                column.append(None)
+
+    def batch(self) -> GrainBatch:
+        return GrainBatch(
+            source=self.source,
+            grain_id=self.grain_id,
+            location=np.asarray(self.location, np.int64),
+            location_kind="line",
+            face_offsets=np.concatenate([[0], np.cumsum(self.n_faces, dtype=np.int64)]),
+            nbr_offsets=np.concatenate([[0], np.cumsum(self.degrees, dtype=np.int64)]),
+            neighbors=np.asarray(self.neighbors, np.int32),
+            parse_error=self.parse_error,
+            volume=np.asarray(self.floats["volume"], np.float64),
+            area=np.asarray(self.floats["area"], np.float64),
+            attributes=self.attributes,
+        )
+
+
+def _parse_faces(text: str) -> list[list[int]]:
+    faces = text.strip().rstrip(";").split(";")
+    parsed = []
+    for f, face in enumerate(faces):
+        tokens = face.split()
+        if not tokens:
+            raise ValueError(f"face {f} lists no neighbours")
+        try:
+            parsed.append([int(t) for t in tokens])
+        except ValueError:
+            bad = next(t for t in tokens if not t.lstrip("-").isdigit())
+            raise ValueError(f"face {f}: {bad!r} is not a face index") from None
+    return parsed
+
+
+def read_adjacency(lines: Iterable[bytes], source: str, chunk_size: int) -> Iterator[GrainBatch]:
+    """Parse adjacency text into batches of at most ``chunk_size`` grains.
+
+    Parameters
+    ----------
+    lines : iterable of bytes
+        The input's lines (a binary file object will do).
+    source : str
+        The input's name, used in messages.
+    chunk_size : int
+        Grains per batch.
+
+    Yields
+    ------
+    GrainBatch
+        Every non-comment line becomes one grain, readable or not.
+    """
+    chunk = _Chunk(source)
+    for line_no, raw in enumerate(lines, 1):
+        try:
+            line = raw.decode("utf-8").rstrip("\r\n")
+        except UnicodeDecodeError as exc:
+            grain_id = raw.split(b"\t", 1)[0].decode("utf-8", "replace").strip()
+            chunk.add_unreadable(line_no, grain_id, f"not UTF-8 text ({exc.reason})")
+        else:
+            if not line.strip() or line.lstrip().startswith("#"):
+                continue
+            chunk.add(line_no, line)
+        if len(chunk) >= chunk_size:
+            yield chunk.batch()
+            chunk = _Chunk(source)
+    if len(chunk):
+        yield chunk.batch()

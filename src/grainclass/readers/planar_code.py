@@ -1,0 +1,95 @@
+"""Reader for plantri's planar_code: each triangulation is the dual of a grain."""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from typing import BinaryIO
+
+import numpy as np
+
+from grainclass.batch import GrainBatch
+
+HEADERS = {
+    b">>planar_code<<": False,
+    b">>planar_code le<<": False,
+    b">>planar_code be<<": True,
+}
+BLOCK_BYTES = 1 << 22
+
+
+def _read_header(stream: BinaryIO, head: bytes) -> tuple[bool, bytes]:
+    """Strip an optional header; returns (big_endian, the bytes read past it)."""
+    for header, big_endian in HEADERS.items():
+        if head.startswith(header):
+            return big_endian, head[len(header) :]
+    return False, head
+
+
+def read_planar_code(stream: BinaryIO, source: str, chunk_size: int) -> Iterator[GrainBatch]:
+    """Parse a planar_code stream into batches of at most ``chunk_size`` triangulations.
+
+    Parameters
+    ----------
+    stream : binary file object
+        The input, read block by block: memory stays bounded by the chunk size.
+    source : str
+        The input's name, used in messages.
+    chunk_size : int
+        Triangulations per batch.
+
+    Yields
+    ------
+    GrainBatch
+        Grain ids are the 1-based positions in the stream; a record cut off by the end of the
+        input becomes an unreadable grain with its own row.
+    """
+    from grainclass._kernels.planar_code import _fill, _scan
+
+    big_endian, pending = _read_header(stream, stream.read(32))
+    record = 1
+    at_end = False
+    while True:
+        while not at_end and len(pending) < BLOCK_BYTES:
+            block = stream.read(BLOCK_BYTES)
+            at_end = not block
+            pending += block
+        buf = np.frombuffer(pending, np.uint8)
+        records, vertices, entries, consumed = _scan(buf, big_endian, chunk_size)
+        if records == 0:
+            if at_end:
+                if pending:
+                    yield _cut_off(source, record, len(pending))
+                return
+            block = stream.read(BLOCK_BYTES)  # one record longer than a block: read on
+            at_end = not block
+            pending += block
+            continue
+        face_offsets = np.empty(records + 1, np.int64)
+        nbr_offsets = np.empty(vertices + 1, np.int64)
+        neighbors = np.empty(entries, np.int32)
+        _fill(buf, big_endian, records, face_offsets, nbr_offsets, neighbors)
+        yield GrainBatch(
+            source=source,
+            grain_id=[str(i) for i in range(record, record + records)],
+            location=np.arange(record, record + records, dtype=np.int64),
+            location_kind="record",
+            face_offsets=face_offsets,
+            nbr_offsets=nbr_offsets,
+            neighbors=neighbors,
+            parse_error=[None] * records,
+        )
+        record += records
+        pending = pending[consumed:]
+
+
+def _cut_off(source: str, record: int, n_bytes: int) -> GrainBatch:
+    return GrainBatch(
+        source=source,
+        grain_id=[str(record)],
+        location=np.array([record]),
+        location_kind="record",
+        face_offsets=np.zeros(2, np.int64),
+        nbr_offsets=np.zeros(1, np.int64),
+        neighbors=np.zeros(0, np.int32),
+        parse_error=[f"the input ends in the middle of this record ({n_bytes} bytes left)"],
+    )

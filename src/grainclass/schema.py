@@ -1,0 +1,70 @@
+"""The per-grain output table: column names and Arrow types, in one place."""
+
+import pyarrow as pa
+
+SCHEMA_VERSION = "1"
+
+GRAIN_ID = "grain_id"
+SOURCE = "source"
+STATUS = "status"
+ERROR = "error"
+N_FACES = "n_faces"
+N_TRIANGLES = "n_triangles"
+P_VECTOR = "p_vector"
+FAMILY = "family"
+CLASS = "class"
+TRUNCATIONS = "truncations"
+FUNDAMENTAL_FACES = "fundamental_faces"
+TREES = "trees"
+DEPTH = "depth"
+ROUND_K = "round_k"
+SPLIT_K = "split_k"
+SPLIT_M = "split_m"
+BELTS4 = "belts4"
+PENALTY = "penalty"
+VOLUME = "volume"
+AREA = "area"
+ISOPERIMETRIC = "isoperimetric"
+
+GRAIN_SCHEMA = pa.schema(
+    [
+        (GRAIN_ID, pa.string()),
+        (SOURCE, pa.string()),
+        (STATUS, pa.string()),
+        (ERROR, pa.string()),
+        (N_FACES, pa.int32()),
+        (N_TRIANGLES, pa.int32()),
+        (P_VECTOR, pa.list_(pa.int32())),
+        (FAMILY, pa.string()),
+        (CLASS, pa.string()),
+        (TRUNCATIONS, pa.int32()),
+        (FUNDAMENTAL_FACES, pa.int32()),
+        (TREES, pa.string()),
+        (DEPTH, pa.int32()),
+        (ROUND_K, pa.int32()),
+        (SPLIT_K, pa.int32()),
+        (SPLIT_M, pa.int32()),
+        (BELTS4, pa.int32()),
+        (PENALTY, pa.int64()),
+        (VOLUME, pa.float64()),
+        (AREA, pa.float64()),
+        (ISOPERIMETRIC, pa.float64()),
+    ],
+    metadata={"grainclass.schema_version": SCHEMA_VERSION},
+)
+
+COLUMNS = frozenset(GRAIN_SCHEMA.names)
+
+# The classes of the paper's Tables II, V, R and E, in their column order.
+CLASSES = (
+    "stacked",
+    "flag",
+    "flag+1",
+    "flag+1+1",
+    "flag+2",
+    "flag>=3",
+    "sc",
+    "sc+1",
+    "sc>=2",
+)
+STATUSES = ("ok", "degenerate", "non_simple", "invalid")
