@@ -1,3 +1,3 @@
-from grainclass.cli import cli
+from grainclass.cli import main
 
-cli()
+main()

@@ -1,0 +1,191 @@
+"""The ``grainclass`` command line: parses arguments, calls the library, maps errors to exit codes.
+
+Heavy imports (numba, pyarrow, pandas) happen inside the commands, so ``--help`` stays fast.
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+
+import click
+
+from grainclass import __version__
+
+EXIT_CODES = """\b
+Exit codes:
+  0    success (bad grains are data: they get a row with their status)
+  1    an input or output could not be read or written; with --strict, bad grains
+  2    usage error
+  130  interrupted (no partial output file is left behind)
+"""
+
+INPUT_FORMATS = ("auto", "adjacency", "planar_code")
+STATUSES = ("ok", "degenerate", "non_simple", "invalid")
+
+
+@click.group(epilog=EXIT_CODES, context_settings={"help_option_names": ["-h", "--help"]})
+@click.version_option(__version__, prog_name="grainclass")
+def cli() -> None:
+    """Classify the grains of 3D cellular microstructures by combinatorial type.
+
+    Each grain is a simple 3-polytope given by its face adjacency; grainclass reduces it to its
+    fundamental polytope and reports its class (stacked, flag, sc and their truncations),
+    roundness, 4-belts, split type and penalty, as in Lutz, Mason, Lazar and MacPherson,
+    "Roundness of grains in cellular microstructures".
+    """
+
+
+@cli.command("classify", epilog=EXIT_CODES)
+@click.argument("inputs", nargs=-1, required=True, metavar="INPUT...")
+@click.option(
+    "-o",
+    "--output",
+    required=True,
+    metavar="FILE",
+    help="Parquet file to write, one row per grain; '-' writes to standard output.",
+)
+@click.option(
+    "--format",
+    "input_format",
+    type=click.Choice(INPUT_FORMATS),
+    default="auto",
+    show_default=True,
+    help="Input format; 'auto' sniffs each input.",
+)
+@click.option("--strict", is_flag=True, help="Exit 1 if any grain is not a simple polytope.")
+@click.option(
+    "--chunk-size",
+    type=click.IntRange(min=1),
+    default=50_000,
+    show_default=True,
+    help="Grains per batch (and per Parquet row group).",
+)
+@click.option("-q", "--quiet", is_flag=True, help="Print nothing on standard error but errors.")
+def classify_cmd(
+    inputs: tuple[str, ...],
+    output: str,
+    input_format: str,
+    strict: bool,
+    chunk_size: int,
+    quiet: bool,
+) -> None:
+    """Classify every grain of INPUT... into a per-grain Parquet table.
+
+    INPUT is adjacency text (one grain per line) or plantri's planar_code; '-' reads standard
+    input, e.g. `plantri 12 | grainclass classify - -o all12.parquet`.
+    """
+    from grainclass.classify import classify
+    from grainclass.errors import GrainclassError
+    from grainclass.parquet import GrainTableWriter
+    from grainclass.readers import read_dataset
+
+    fmt = None if input_format == "auto" else input_format
+    counts: dict[str, int] = {}
+    try:
+        with GrainTableWriter(output) as writer:
+            for batch in read_dataset(list(inputs), fmt, chunk_size):
+                table = classify(batch)
+                for item in table.column("status").value_counts().to_pylist():
+                    counts[item["values"]] = counts.get(item["values"], 0) + item["counts"]
+                writer.write(table)
+    except GrainclassError as exc:
+        raise click.ClickException(str(exc)) from None
+    except BrokenPipeError:
+        _quiet_broken_pipe()
+    if writer.dropped:
+        click.echo(
+            "warning: attributes first seen after the first chunk were not written: "
+            + ", ".join(sorted(writer.dropped)),
+            err=True,
+        )
+    bad = sum(count for status, count in counts.items() if status != "ok")
+    if not quiet or bad:
+        detail = ", ".join(f"{counts[s]} {s}" for s in STATUSES if s in counts)
+        click.echo(f"grainclass: {writer.rows} grains classified ({detail or 'none'})", err=True)
+    if strict and bad:
+        raise click.ClickException(f"{bad} grain(s) are not simple polytopes (--strict)")
+
+
+@cli.command("summarize", epilog=EXIT_CODES)
+@click.argument("grains", nargs=-1, required=True, metavar="GRAINS.parquet...")
+@click.option(
+    "--table",
+    "table_name",
+    type=click.Choice(["classes", "round", "split"]),
+    help="Print only this table (default: all three).",
+)
+@click.option(
+    "--format",
+    "output_format",
+    type=click.Choice(["text", "csv", "markdown", "latex", "json", "parquet"]),
+    help="Output format (default: from the -o extension, else text).",
+)
+@click.option(
+    "--n",
+    "n_values",
+    type=click.IntRange(min=4),
+    multiple=True,
+    help="Add a round-table row for grains with N faces (repeatable).",
+)
+@click.option("-o", "--output", default="-", metavar="FILE", help="Write here instead of stdout.")
+def summarize_cmd(
+    grains: tuple[str, ...],
+    table_name: str | None,
+    output_format: str | None,
+    n_values: tuple[int, ...],
+    output: str,
+) -> None:
+    """Summarize per-grain tables into the paper's tables: classes, round, split.
+
+    Above the tables, one line gives the grains by status, the mean number of faces and the
+    percentage of faces that are triangles.
+    """
+    from grainclass.errors import GrainclassError
+    from grainclass.parquet import read_grain_tables
+    from grainclass.render import EXTENSIONS, render
+    from grainclass.summarize import COLUMNS, TABLES, summarize
+
+    fmt = output_format or EXTENSIONS.get(os.path.splitext(output)[1].lower(), "text")
+    tables = (table_name,) if table_name else TABLES
+    if fmt == "parquet" and len(tables) != 1:
+        raise click.UsageError("parquet output holds one table: choose one with --table")
+    if fmt == "parquet" and output == "-" and sys.stdout.isatty():
+        raise click.UsageError("refusing to write Parquet to a terminal; use -o FILE")
+    try:
+        summary = summarize(read_grain_tables(list(grains), COLUMNS), n_values)
+    except GrainclassError as exc:
+        raise click.ClickException(str(exc)) from None
+    rendered = render(summary, tables, fmt)
+    data = rendered.encode() if isinstance(rendered, str) else rendered
+    try:
+        if output == "-":
+            sys.stdout.buffer.write(data)
+            sys.stdout.buffer.flush()
+        else:
+            with open(output, "wb") as sink:
+                sink.write(data)
+    except BrokenPipeError:
+        _quiet_broken_pipe()
+    except OSError as exc:
+        raise click.ClickException(f"{output}: {exc.strerror}") from None
+
+
+def _quiet_broken_pipe() -> None:
+    # The reader of our output went away (`| head`): stop quietly, as Unix tools do.
+    devnull = os.open(os.devnull, os.O_WRONLY)
+    os.dup2(devnull, sys.stdout.fileno())
+    sys.exit(1)
+
+
+def main() -> None:
+    """Entry point: click's handling, except that Ctrl-C exits 130 as shells expect."""
+    try:
+        code = cli.main(standalone_mode=False)
+    except click.ClickException as exc:
+        exc.show()
+        sys.exit(exc.exit_code)
+    except (click.Abort, KeyboardInterrupt):
+        click.echo("grainclass: interrupted", err=True)
+        sys.exit(130)
+    sys.exit(code if isinstance(code, int) else 0)

@@ -1,0 +1,116 @@
+"""Parquet output: one row group per batch, written to a temporary file and renamed at the end.
+
+An interrupted run therefore never leaves a half-written file under the requested name.
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+import tempfile
+from types import TracebackType
+from typing import BinaryIO
+
+import pyarrow as pa
+import pyarrow.parquet as pq
+
+from grainclass.errors import OutputError
+from grainclass.schema import GRAIN_SCHEMA
+
+
+class GrainTableWriter:
+    """Context manager that writes per-grain tables into one Parquet file.
+
+    The first table fixes the columns (the grain schema plus the input's extra attributes).
+    Later tables get nulls for attributes they lack; attributes first seen after the first
+    table cannot be added to a Parquet file already being written and are listed in
+    :attr:`dropped`.
+
+    Parameters
+    ----------
+    path : str
+        The file to write, or ``-`` for standard output (refused when that is a terminal).
+    """
+
+    def __init__(self, path: str) -> None:
+        self.path = path
+        self.rows = 0
+        self.dropped: set[str] = set()
+        self._writer: pq.ParquetWriter | None = None
+        self._schema: pa.Schema | None = None
+        self._sink: BinaryIO | None = None
+        self._tmp: str | None = None
+
+    def __enter__(self) -> GrainTableWriter:
+        if self.path == "-":
+            if sys.stdout.isatty():
+                raise OutputError("refusing to write Parquet to a terminal; use -o FILE")
+            self._sink = sys.stdout.buffer
+            return self
+        directory = os.path.dirname(os.path.abspath(self.path))
+        try:
+            fd, self._tmp = tempfile.mkstemp(
+                prefix=f".{os.path.basename(self.path)}.", suffix=".tmp", dir=directory
+            )
+        except OSError as exc:
+            raise OutputError(f"{self.path}: cannot write here ({exc.strerror})") from None
+        self._sink = os.fdopen(fd, "wb")
+        return self
+
+    def write(self, table: pa.Table) -> None:
+        """Append one batch's table as a row group."""
+        if self._writer is None:
+            self._open(table.schema)
+        assert self._writer is not None and self._schema is not None
+        for name in table.schema.names:
+            if name not in self._schema.names:
+                self.dropped.add(name)
+        columns = [
+            table.column(f.name) if f.name in table.schema.names else pa.nulls(len(table), f.type)
+            for f in self._schema
+        ]
+        self._writer.write_table(pa.Table.from_arrays(columns, schema=self._schema))
+        self.rows += len(table)
+
+    def _open(self, schema: pa.Schema) -> None:
+        self._schema = schema
+        self._writer = pq.ParquetWriter(self._sink, schema, compression="zstd")
+
+    def __exit__(
+        self,
+        exc_type: type[BaseException] | None,
+        exc: BaseException | None,
+        tb: TracebackType | None,
+    ) -> None:
+        try:
+            if exc_type is None and self._writer is None:
+                self._open(GRAIN_SCHEMA)  # no grains at all: still a valid, empty table
+            if self._writer is not None:
+                self._writer.close()
+            if self._tmp is not None and self._sink is not None:
+                self._sink.close()
+            elif self._sink is not None:
+                self._sink.flush()
+        finally:
+            if self._tmp is not None:
+                if exc_type is None:
+                    os.replace(self._tmp, self.path)
+                elif os.path.exists(self._tmp):
+                    os.unlink(self._tmp)
+
+
+def read_grain_tables(paths: list[str], columns: list[str] | None = None) -> pa.Table:
+    """Read and concatenate per-grain Parquet files (``-`` reads standard input)."""
+    from grainclass.errors import InputError
+
+    tables = []
+    for path in paths:
+        try:
+            if path == "-":
+                source = pa.BufferReader(sys.stdin.buffer.read())
+                tables.append(pq.read_table(source, columns=columns))
+            else:
+                tables.append(pq.read_table(path, columns=columns))
+        except (OSError, pa.ArrowInvalid) as exc:
+            raise InputError(path, f"not a grainclass Parquet table ({exc})") from None
+    return pa.concat_tables(tables)

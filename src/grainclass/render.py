@@ -1,0 +1,107 @@
+"""Turn a :class:`~grainclass.summarize.Summary` into text, CSV, Markdown, LaTeX, JSON or Parquet."""
+
+from __future__ import annotations
+
+import io
+import json
+import math
+
+import pandas as pd
+
+from grainclass.summarize import Summary
+
+FORMATS = ("text", "csv", "markdown", "latex", "json", "parquet")
+EXTENSIONS = {
+    ".txt": "text",
+    ".csv": "csv",
+    ".md": "markdown",
+    ".tex": "latex",
+    ".json": "json",
+    ".parquet": "parquet",
+}
+TITLES = {
+    "classes": "Grains by number of faces n and class (the paper's Tables II, V, R, E)",
+    "round": "Percent of ok grains in round<=k and in the sc family (the paper's round table)",
+    "split": "flag grains by number of faces n and split type k:m (m = n-4-k)",
+}
+
+
+def headline(summary: Summary) -> str:
+    """One line of headline figures: grains by status, mean faces, percent triangles."""
+    h = summary.headline
+    return (
+        f"grains: {h['grains']} (ok {h['ok']}, degenerate {h['degenerate']}, "
+        f"non_simple {h['non_simple']}, invalid {h['invalid']}); "
+        f"mean faces per grain {h['mean_faces']:.3f}; "
+        f"triangles {h['triangle_faces_percent']:.2f}% of faces"
+    )
+
+
+def _display(summary: Summary, name: str) -> pd.DataFrame:
+    """The table as strings for people: percentages with two decimals, split cells as k:m."""
+    table = summary.table(name)
+    if name == "round":
+        shown = table.copy()
+        for column in shown.columns[2:]:
+            shown[column] = shown[column].map(lambda x: "" if math.isnan(x) else f"{x:.2f}")
+        return shown.astype(str)
+    if name == "split":
+        shown = table.astype(str)
+        for column in table.columns[1:]:
+            k = int(column)
+            shown[column] = [
+                f"{count} x {k}:{n - 4 - k}" if count else ""
+                for n, count in zip(table["n"], table[column], strict=True)
+            ]
+        return shown
+    return table.astype(str)
+
+
+def _markdown(table: pd.DataFrame) -> str:
+    lines = ["| " + " | ".join(table.columns) + " |", "|" + "---:|" * len(table.columns)]
+    lines += ["| " + " | ".join(row) + " |" for row in table.itertuples(index=False)]
+    return "\n".join(lines)
+
+
+def _latex(table: pd.DataFrame) -> str:
+    def escape(text: str) -> str:
+        return text.replace("<=", "$\\leq$").replace(">=", "$\\geq$").replace("_", "\\_")
+
+    lines = [
+        "\\begin{tabular}{" + "r" * len(table.columns) + "}",
+        " & ".join(escape(c) for c in table.columns) + " \\\\",
+        "\\hline",
+    ]
+    lines += [" & ".join(escape(c) for c in row) + " \\\\" for row in table.itertuples(index=False)]
+    lines.append("\\end{tabular}")
+    return "\n".join(lines)
+
+
+def render(summary: Summary, tables: tuple[str, ...], fmt: str) -> str | bytes:
+    """Render the headline and the named tables in one of :data:`FORMATS`.
+
+    Parquet holds one table, so ``fmt="parquet"`` needs exactly one name in ``tables``.
+    """
+    if fmt == "parquet":
+        if len(tables) != 1:
+            raise ValueError("parquet output holds one table: choose one with --table")
+        buffer = io.BytesIO()
+        summary.table(tables[0]).to_parquet(buffer, index=False)
+        return buffer.getvalue()
+    if fmt == "json":
+        payload: dict[str, object] = {"headline": summary.headline}
+        for name in tables:
+            payload[name] = json.loads(summary.table(name).to_json(orient="records"))
+        return json.dumps(payload, indent=2) + "\n"
+    parts = {"csv": [], "latex": [f"% {headline(summary)}"]}.get(fmt, [headline(summary)])
+    for name in tables:
+        if fmt == "csv":
+            body = summary.table(name).to_csv(index=False).rstrip("\n")
+            parts.append(body if len(tables) == 1 else f"# {name}\n{body}")
+        elif fmt == "markdown":
+            parts.append(f"**{TITLES[name]}**\n\n{_markdown(_display(summary, name))}")
+        elif fmt == "latex":
+            parts.append(f"% {TITLES[name]}\n{_latex(_display(summary, name))}")
+        else:
+            parts.append(f"{TITLES[name]}\n{_display(summary, name).to_string(index=False)}")
+    return "\n\n".join(parts) + "\n"
