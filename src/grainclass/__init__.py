@@ -17,9 +17,9 @@ __all__ = ["GrainBatch", "__version__", "classify", "read_dataset", "summarize"]
 
 _LAZY = {
     "GrainBatch": "grainclass.batch",
-    "classify": "grainclass.classify",
+    "classify": "grainclass.classification",
     "read_dataset": "grainclass.readers",
-    "summarize": "grainclass.summarize",
+    "summarize": "grainclass.summary",
 }
 
 

@@ -75,7 +75,7 @@ def classify_cmd(
     INPUT is adjacency text (one grain per line) or plantri's planar_code; '-' reads standard
     input, e.g. `plantri 12 | grainclass classify - -o all12.parquet`.
     """
-    from grainclass.classify import classify
+    from grainclass.classification import classify
     from grainclass.errors import GrainclassError
     from grainclass.parquet import GrainTableWriter
     from grainclass.readers import read_dataset
@@ -144,7 +144,7 @@ def summarize_cmd(
     from grainclass.errors import GrainclassError
     from grainclass.parquet import read_grain_tables
     from grainclass.render import EXTENSIONS, render
-    from grainclass.summarize import COLUMNS, TABLES, summarize
+    from grainclass.summary import COLUMNS, TABLES, summarize
 
     fmt = output_format or EXTENSIONS.get(os.path.splitext(output)[1].lower(), "text")
     tables = (table_name,) if table_name else TABLES

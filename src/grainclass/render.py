@@ -1,4 +1,4 @@
-"""Turn a :class:`~grainclass.summarize.Summary` into text, CSV, Markdown, LaTeX, JSON or Parquet."""
+"""Turn a :class:`~grainclass.summary.Summary` into text, CSV, Markdown, LaTeX, JSON or Parquet."""
 
 from __future__ import annotations
 
@@ -8,7 +8,7 @@ import math
 
 import pandas as pd
 
-from grainclass.summarize import Summary
+from grainclass.summary import Summary
 
 FORMATS = ("text", "csv", "markdown", "latex", "json", "parquet")
 EXTENSIONS = {

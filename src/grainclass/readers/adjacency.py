@@ -36,7 +36,7 @@ class _Chunk:
 
     def add(self, line_no: int, line: str) -> None:
         fields = line.split("\t")
-        grain_id = fields[0].strip()
+        grain_id = fields[0].strip() if len(fields) > 1 else (line.split() or [""])[0]
         values: dict[str, str] = {}
         try:
             if len(fields) < 2:

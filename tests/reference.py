@@ -1,0 +1,131 @@
+"""A slow, plain-Python oracle that follows the paper's appendix literally.
+
+It shares no code with the kernels: faces are tracked as explicit triangle sets, degree-3
+vertices are removed one at a time in a caller-chosen order, empty triangles and 4-belts come
+from scanning all 3- and 4-subsets, sides of a belt from networkx, and truncation trees from
+replaying the stackings forwards (the parent of a stacked vertex is whoever created the triangle
+it was stacked into).
+"""
+
+from __future__ import annotations
+
+import itertools
+import random
+
+import networkx as nx
+
+
+def oriented_faces(lists: list[list[int]]) -> set[tuple[int, int, int]]:
+    """Triangles (v, x, y) with y after x around v, rotated to start at their smallest vertex."""
+    faces = set()
+    for v, nbrs in enumerate(lists):
+        for i, x in enumerate(nbrs):
+            y = nbrs[(i + 1) % len(nbrs)]
+            tri = (v, x, y)
+            k = tri.index(min(tri))
+            faces.add(tri[k:] + tri[:k])
+    return faces
+
+
+def _tree_string(node, children) -> str:
+    return "(" + "".join(sorted(_tree_string(c, children) for c in children[node])) + ")"
+
+
+def classify(lists: list[list[int]], seed: int = 0) -> dict:
+    """Classify a triangulation given by consistently oriented rotation lists."""
+    n = len(lists)
+    graph = nx.Graph((v, x) for v, nbrs in enumerate(lists) for x in nbrs)
+    faces = {frozenset(f) for f in oriented_faces(lists)}
+    assert len(faces) == 2 * n - 4 and graph.number_of_edges() == 3 * n - 6
+    degrees = [len(nbrs) for nbrs in lists]
+    p_vector = tuple(degrees.count(d) for d in range(3, max(degrees) + 1))
+    result = {"n_faces": n, "p_vector": p_vector}
+
+    rng = random.Random(seed)
+    removed: list[tuple[int, frozenset]] = []
+    current = graph.copy()
+    while current.number_of_nodes() > 4:
+        cubic = [v for v in current if current.degree(v) == 3]
+        if not cubic:
+            break
+        v = rng.choice(cubic)
+        link = frozenset(current[v])
+        faces -= {f for f in faces if v in f}
+        faces.add(link)
+        current.remove_node(v)
+        removed.append((v, link))
+    t = len(removed)
+    result |= {"truncations": t, "fundamental_faces": n - t}
+    if current.number_of_nodes() == 4:
+        return result | {
+            "family": "stacked",
+            "class": "stacked",
+            "trees": None,
+            "depth": None,
+            "round_k": n - 4,
+            "split_k": None,
+            "split_m": None,
+            "belts4": None,
+            "penalty": None,
+        }
+    empty = any(
+        all(current.has_edge(a, b) for a, b in itertools.combinations(tri, 2))
+        and frozenset(tri) not in faces
+        for tri in itertools.combinations(current.nodes, 3)
+    )
+    family = "sc" if empty else "flag"
+
+    # Replay the stackings forwards to grow the truncation trees.
+    creator = dict.fromkeys(faces)
+    parent, children = {}, {v: [] for v, _ in removed}
+    for v, link in reversed(removed):
+        parent[v] = creator.pop(link)
+        if parent[v] is not None:
+            children[parent[v]].append(v)
+        for a, b in itertools.combinations(link, 2):
+            creator[frozenset((v, a, b))] = v
+    roots = [v for v in parent if parent[v] is None]
+    trees = "+".join(sorted((_tree_string(r, children) for r in roots), key=lambda s: (len(s), s)))
+
+    def height(v):
+        return 1 + max((height(c) for c in children[v]), default=0)
+
+    depth = max((height(r) for r in roots), default=0)
+    if t == 0:
+        cls = family
+    elif t == 1:
+        cls = family + "+1"
+    elif family == "sc":
+        cls = "sc>=2"
+    elif t == 2:
+        cls = "flag+1+1" if len(roots) == 2 else "flag+2"
+    else:
+        cls = "flag>=3"
+    result |= {
+        "family": family,
+        "class": cls,
+        "trees": trees,
+        "depth": depth,
+        "round_k": t if family == "flag" else None,
+    }
+    if cls != "flag":
+        return result | {"split_k": None, "split_m": None, "belts4": None, "penalty": None}
+
+    belts, weight, split_k = 0, 0, 0
+    for quad in itertools.combinations(graph.nodes, 4):
+        induced = graph.subgraph(quad)
+        if induced.number_of_edges() != 4 or any(d != 2 for _, d in induced.degree()):
+            continue  # not a chordless 4-cycle
+        rest = graph.subgraph(set(graph) - set(quad))
+        sizes = [len(c) for c in nx.connected_components(rest)]
+        assert len(sizes) == 2
+        k = min(sizes)
+        belts += 1
+        weight += k * (n - k - 4)
+        split_k = max(split_k, k)
+    return result | {
+        "split_k": split_k,
+        "split_m": n - 4 - split_k,
+        "belts4": belts,
+        "penalty": n * weight,
+    }
