@@ -36,7 +36,8 @@ def classify(lists: list[list[int]], seed: int = 0) -> dict:
     n = len(lists)
     graph = nx.Graph((v, x) for v, nbrs in enumerate(lists) for x in nbrs)
     faces = {frozenset(f) for f in oriented_faces(lists)}
-    assert len(faces) == 2 * n - 4 and graph.number_of_edges() == 3 * n - 6
+    assert len(faces) == 2 * n - 4
+    assert graph.number_of_edges() == 3 * n - 6
     degrees = [len(nbrs) for nbrs in lists]
     p_vector = tuple(degrees.count(d) for d in range(3, max(degrees) + 1))
     result = {"n_faces": n, "p_vector": p_vector}

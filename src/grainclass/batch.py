@@ -1,4 +1,4 @@
-"""`GrainBatch`: a chunk of grains held as flat arrays, the unit that flows from readers to kernels."""
+"""`GrainBatch`: a chunk of grains as flat arrays, the unit that flows from readers to kernels."""
 
 from __future__ import annotations
 
@@ -86,7 +86,8 @@ class GrainBatch:
 
         Examples
         --------
-        >>> cube = [[1, 2, 3, 4], [0, 4, 5, 2], [0, 1, 5, 3], [0, 2, 5, 4], [0, 3, 5, 1], [1, 4, 3, 2]]
+        >>> cube = [[1, 2, 3, 4], [0, 4, 5, 2], [0, 1, 5, 3],
+        ...         [0, 2, 5, 4], [0, 3, 5, 1], [1, 4, 3, 2]]
         >>> GrainBatch.from_lists([cube]).n_faces.tolist()
         [6]
         """

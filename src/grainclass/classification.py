@@ -120,9 +120,10 @@ def classify(batch: GrainBatch) -> pa.Table:
     Returns
     -------
     pyarrow.Table
-        One row per grain, in input order, with the columns of :data:`grainclass.schema.GRAIN_SCHEMA`
-        followed by any extra string attributes of the input. Grains that are not simple
-        polytopes keep their row: their status says why and their classification is null.
+        One row per grain, in input order, with the columns of
+        :data:`grainclass.schema.GRAIN_SCHEMA` followed by any extra string attributes of the
+        input. Grains that are not simple polytopes keep their row: their status says why and
+        their classification is null.
 
     Examples
     --------
@@ -201,5 +202,6 @@ def classify(batch: GrainBatch) -> pa.Table:
     }
     table = pa.table(columns, schema=schema.GRAIN_SCHEMA)
     for key, values in batch.attributes.items():
-        table = table.append_column(pa.field(key, pa.string()), pa.array(values, pa.string()))
+        if key not in schema.COLUMNS:  # an input field may not overwrite a result column
+            table = table.append_column(pa.field(key, pa.string()), pa.array(values, pa.string()))
     return table

@@ -61,7 +61,8 @@ class GrainTableWriter:
         """Append one batch's table as a row group."""
         if self._writer is None:
             self._open(table.schema)
-        assert self._writer is not None and self._schema is not None
+        assert self._writer is not None
+        assert self._schema is not None
         for name in table.schema.names:
             if name not in self._schema.names:
                 self.dropped.add(name)

@@ -54,7 +54,7 @@ def _reduce(n, off, nb, alive, removed_round, link):
 
 @njit
 def _has_empty_triangle(n, off, nb, adj, alive):
-    """True if the fundamental triangulation has a 3-cycle that is not a face (severely constricted).
+    """True if the fundamental triangulation has a 3-cycle that is not a face (it is then sc).
 
     Each edge of a triangulation lies on exactly two faces, so an edge with a third common
     neighbour closes an empty triangle. O(E * deg).

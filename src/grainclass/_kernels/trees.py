@@ -27,7 +27,7 @@ def _less(buf, a_start, a_len, b_start, b_len):
 
 @njit
 def _sort_slices(items, count, buf, start, length, by_length_first):
-    """Insertion sort of ``items[:count]`` (node ids) by their strings ``buf[start:start+length]``."""
+    """Insertion sort of node ids ``items[:count]`` by their strings in ``buf``."""
     for i in range(1, count):
         item = items[i]
         j = i - 1

@@ -6,6 +6,7 @@ and text never does.
 
 from __future__ import annotations
 
+import io
 import sys
 from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
@@ -38,7 +39,9 @@ def sniff(head: bytes) -> str:
 @contextmanager
 def _open(path: str) -> Iterator[BinaryIO]:
     if path == "-":
-        yield sys.stdin.buffer
+        stream = sys.stdin.buffer
+        # Sniffing needs peek(); a replaced stdin (an embedding program, a test) may lack it.
+        yield stream if hasattr(stream, "peek") else io.BufferedReader(stream)
         return
     try:
         stream = open(path, "rb")  # noqa: SIM115 (closed below, after the generator is done)

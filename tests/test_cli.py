@@ -1,0 +1,241 @@
+"""The command line: outputs, streams and exit codes (0 ok, 1 failure, 2 usage, 130 Ctrl-C)."""
+
+from __future__ import annotations
+
+import io
+import json
+import subprocess
+import sys
+
+import pyarrow as pa
+import pyarrow.parquet as pq
+import pytest
+from click.testing import CliRunner
+
+from conftest import EXAMPLES
+from grainclass import cli as cli_module
+from grainclass.cli import cli
+from grainclass.parquet import GrainTableWriter
+from grainclass.schema import GRAIN_SCHEMA
+
+CUBE_LINE = "cube\t1 2 3 4;0 4 5 2;0 1 5 3;0 2 5 4;0 3 5 1;1 4 3 2\n"
+
+
+@pytest.fixture
+def runner() -> CliRunner:
+    return CliRunner()
+
+
+def _classify(runner, tmp_path, *inputs, extra=()):
+    out = tmp_path / "grains.parquet"
+    result = runner.invoke(cli, ["classify", *map(str, inputs), "-o", str(out), *extra])
+    return result, out
+
+
+def test_classify_writes_one_row_per_grain_in_input_order(runner, tmp_path):
+    result, out = _classify(
+        runner, tmp_path, EXAMPLES / "bad-grains.txt", EXAMPLES / "polytopes.txt"
+    )
+    assert result.exit_code == 0, result.output
+    table = pq.read_table(out)
+    assert table.num_rows == 12 + 13
+    assert table.column("grain_id").to_pylist()[:2] == ["cube", "bad_token"]
+    assert table.column("source").to_pylist()[-1] == str(EXAMPLES / "polytopes.txt")
+    assert table.schema.names == GRAIN_SCHEMA.names
+    assert "25 grains classified (16 ok, 2 degenerate, 1 non_simple, 6 invalid)" in result.stderr
+
+
+def test_classify_reads_standard_input(runner, tmp_path):
+    out = tmp_path / "stdin.parquet"
+    result = runner.invoke(cli, ["classify", "-", "-o", str(out)], input=CUBE_LINE * 3)
+    assert result.exit_code == 0, result.output
+    assert pq.read_table(out).column("class").to_pylist() == ["flag"] * 3
+
+
+def test_classify_writes_parquet_to_standard_output(runner):
+    result = runner.invoke(cli, ["classify", "-", "-o", "-", "-q"], input=CUBE_LINE)
+    assert result.exit_code == 0
+    table = pq.read_table(pa.BufferReader(result.stdout_bytes))
+    assert table.column("penalty").to_pylist() == [18]
+    assert result.stderr == ""
+
+
+def test_classify_strict_exits_1_but_keeps_every_row(runner, tmp_path):
+    result, out = _classify(runner, tmp_path, EXAMPLES / "bad-grains.txt", extra=["--strict"])
+    assert result.exit_code == 1
+    assert "9 grain(s) are not simple polytopes" in result.stderr
+    assert pq.read_table(out).num_rows == 12
+
+
+def test_classify_missing_input_exits_1_and_leaves_no_file(runner, tmp_path):
+    result, _ = _classify(runner, tmp_path, EXAMPLES / "polytopes.txt", tmp_path / "nope.txt")
+    assert result.exit_code == 1
+    assert f"Error: {tmp_path / 'nope.txt'}: No such file or directory" in result.stderr
+    assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize(
+    "args",
+    [
+        ["classify", "x.txt"],  # no -o
+        ["classify", "-o", "x.parquet"],  # no input
+        ["classify", "x.txt", "-o", "y", "--format", "xml"],
+        ["classify", "x.txt", "-o", "y", "--chunk-size", "0"],
+        ["summarize", "x.parquet", "--table", "nope"],
+        ["summarize", "x.parquet", "--n", "3"],
+        ["frobnicate"],
+    ],
+)
+def test_usage_errors_exit_2(runner, args):
+    assert runner.invoke(cli, args).exit_code == 2
+
+
+def test_interrupted_writer_leaves_no_file(tmp_path):
+    path = tmp_path / "out.parquet"
+    table = pa.Table.from_pylist([], schema=GRAIN_SCHEMA)
+
+    def interrupted_run():
+        with GrainTableWriter(str(path)) as writer:
+            writer.write(table)
+            raise KeyboardInterrupt
+
+    with pytest.raises(KeyboardInterrupt):
+        interrupted_run()
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_ctrl_c_exits_130(monkeypatch, tmp_path, capsys):
+    def interrupted(batch):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr("grainclass.classification.classify", interrupted)
+    out = tmp_path / "out.parquet"
+    monkeypatch.setattr(
+        sys, "argv", ["grainclass", "classify", str(EXAMPLES / "polytopes.txt"), "-o", str(out)]
+    )
+    with pytest.raises(SystemExit) as exit_info:
+        cli_module.main()
+    assert exit_info.value.code == 130
+    assert "interrupted" in capsys.readouterr().err
+    assert list(tmp_path.iterdir()) == []
+
+
+@pytest.fixture
+def grains_parquet(runner, tmp_path):
+    result, out = _classify(
+        runner, tmp_path, EXAMPLES / "polytopes.txt", EXAMPLES / "plantri-10.pc"
+    )
+    assert result.exit_code == 0
+    return out
+
+
+def test_summarize_text_has_headline_and_three_tables(runner, grains_parquet):
+    result = runner.invoke(cli, ["summarize", str(grains_parquet)])
+    assert result.exit_code == 0
+    lines = result.stdout.splitlines()
+    assert lines[0] == (
+        "grains: 246 (ok 246, degenerate 0, non_simple 0, invalid 0); "
+        f"mean faces per grain {(sum(_faces()) + 233 * 10) / 246:.3f}; "
+        f"triangles {100 * _triangle_share():.2f}% of faces"
+    )
+    # Split-type table, n = 10 row: the paper's 2 x 1:5, 1 x 2:4, 7 x 3:3.
+    assert any(
+        line.split() == ["10", "2", "x", "1:5", "1", "x", "2:4", "7", "x", "3:3"] for line in lines
+    )
+
+
+def _faces() -> list[int]:
+    from hand_derived import EXPECTED
+
+    return [e["n_faces"] for e in EXPECTED.values()]
+
+
+def _triangle_share() -> float:
+    from hand_derived import EXPECTED
+
+    # plantri n = 10: faces of degree 3 counted by the independent reader of test_properties.
+    from test_properties import _read_planar_code
+
+    graphs = _read_planar_code((EXAMPLES / "plantri-10.pc").read_bytes())
+    triangles = sum(len(nbrs) == 3 for g in graphs for nbrs in g)
+    triangles += sum(e["p_vector"][0] for e in EXPECTED.values())
+    return triangles / (sum(_faces()) + 233 * 10)
+
+
+@pytest.mark.parametrize(
+    ("fmt", "check"),
+    [
+        (
+            "csv",
+            lambda text: (
+                text.splitlines()[0]
+                == "n,all,stacked,flag,flag+1,flag+1+1,flag+2,flag>=3,sc,sc+1,sc>=2"
+            ),
+        ),
+        ("markdown", lambda text: "| n | all | stacked |" in text),
+        ("latex", lambda text: "\\begin{tabular}" in text and "flag$\\geq$3" in text),
+        ("json", lambda text: json.loads(text)["classes"][-1]["all"] == 246),
+    ],
+)
+def test_summarize_formats(runner, grains_parquet, fmt, check):
+    result = runner.invoke(
+        cli, ["summarize", str(grains_parquet), "--table", "classes", "--format", fmt]
+    )
+    assert result.exit_code == 0
+    assert check(result.stdout)
+
+
+def test_summarize_parquet_output_from_extension(runner, grains_parquet, tmp_path):
+    out = tmp_path / "split.parquet"
+    result = runner.invoke(
+        cli, ["summarize", str(grains_parquet), "--table", "split", "-o", str(out)]
+    )
+    assert result.exit_code == 0
+    split = pq.read_table(out).to_pandas().set_index("n")
+    assert split.loc[10].tolist() == [0, 2, 1, 7]
+
+
+def test_summarize_parquet_needs_one_table(runner, grains_parquet, tmp_path):
+    result = runner.invoke(
+        cli, ["summarize", str(grains_parquet), "-o", str(tmp_path / "x.parquet")]
+    )
+    assert result.exit_code == 2
+
+
+def test_summarize_reads_standard_input(runner, grains_parquet):
+    result = runner.invoke(
+        cli,
+        ["summarize", "-", "--table", "round", "--format", "csv"],
+        input=grains_parquet.read_bytes(),
+    )
+    assert result.exit_code == 0
+    assert result.stdout.splitlines()[1].startswith("all,246,")
+
+
+def test_summarize_rejects_a_non_parquet_file_with_exit_1(runner):
+    result = runner.invoke(cli, ["summarize", str(EXAMPLES / "polytopes.txt")])
+    assert result.exit_code == 1
+    assert "not a grainclass Parquet table" in result.stderr
+
+
+def test_python_m_grainclass_runs(tmp_path):
+    result = subprocess.run(
+        [sys.executable, "-m", "grainclass", "classify", "-", "-o", "-", "-q"],
+        input=CUBE_LINE.encode(),
+        capture_output=True,
+        check=True,
+    )
+    assert pq.read_table(io.BytesIO(result.stdout)).column("class").to_pylist() == ["flag"]
+
+
+def test_help_imports_nothing_heavy():
+    code = (
+        "import sys\n"
+        "from grainclass.cli import cli\n"
+        "try:\n    cli(['classify', '--help'])\nexcept SystemExit:\n    pass\n"
+        "print(sorted(m for m in ('numba', 'pandas', 'pyarrow', 'numpy') if m in sys.modules))\n"
+    )
+    result = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, check=True
+    )
+    assert result.stdout.splitlines()[-1] == "[]"
