@@ -25,7 +25,7 @@ test: install
 
 # Coverage-style run of the kernels as plain Python (slow): catches code that only works jitted.
 test-nojit: install
-	NUMBA_DISABLE_JIT=1 $(BIN)/python -m pytest -m "not slow" -x -q tests/test_examples.py tests/test_validation.py tests/test_trees.py
+	NUMBA_DISABLE_JIT=1 $(BIN)/python -m pytest -m "not slow" -q -p no:cacheprovider --cov=grainclass --cov-report=term-missing:skip-covered
 
 lint: install
 	$(BIN)/python -m pip install --quiet --disable-pip-version-check -e '.[lint]'

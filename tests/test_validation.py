@@ -170,3 +170,20 @@ def test_graph_with_3n_minus_6_edges_that_is_not_planar_is_invalid():
 def test_self_reference_and_lonely_face_are_invalid():
     assert "lists itself" in _row([[0, 1, 2], [0, 2, 3], [0, 1, 3], [1, 2, 0]])["error"]
     assert "has 1 neighbour" in _row([[1], [0]])["error"]
+
+
+def test_non_simple_grain_with_scrambled_lists_is_invalid_and_says_why():
+    # The square pyramid (non_simple when ordered), its lists in no cyclic order: with fewer than
+    # 3n - 6 adjacencies the corners cannot be recovered from the graph.
+    row = _row([[1, 3, 2, 4], [2, 0, 4], [3, 0, 1], [4, 0, 2], [1, 0, 3]])
+    assert row["status"] == "invalid"
+    assert "Euler characteristic" in row["error"] or "not in cyclic order" in row["error"]
+
+
+def test_grain_of_a_disconnected_surface_with_no_cyclic_order_is_invalid():
+    # Octahedron with two lists scrambled so that no orientation is consistent, one edge removed.
+    lists = [[1, 2, 3, 4], [0, 4, 5, 2], [0, 1, 5, 3], [0, 2, 5, 4], [0, 3, 5, 1], [1, 4, 3, 2]]
+    lists[0], lists[1] = [1, 3, 2, 4], [0, 5, 4, 2]
+    lists = [[x for x in nbrs if {f, x} != {2, 3}] for f, nbrs in enumerate(lists)]
+    row = _row(lists)
+    assert row["status"] == "invalid"

@@ -10,11 +10,12 @@ from grainclass._numba import njit
 
 @njit
 def _entry(buf, p, wide, big_endian):
+    # int(): uint8 arithmetic would wrap at 256 when run as plain Python (NUMBA_DISABLE_JIT).
     if not wide:
-        return buf[p]
+        return int(buf[p])
     if big_endian:
-        return buf[p] * 256 + buf[p + 1]
-    return buf[p] + buf[p + 1] * 256
+        return int(buf[p]) * 256 + int(buf[p + 1])
+    return int(buf[p]) + int(buf[p + 1]) * 256
 
 
 @njit
