@@ -9,7 +9,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import reference
-from grainclass import GrainBatch, classify
+from grainclass import GrainBatch, classify, read_dataset
 from strategies import mirror, relabel, triangulations
 
 FIELDS = list(reference.classify([[1, 2, 3], [0, 3, 2], [0, 1, 3], [0, 2, 1]]))
@@ -99,3 +99,16 @@ def _random_stacked(rng: random.Random, n: int) -> list[list[int]]:
         faces.remove((a, b, c))
         faces |= {(a, b, v), (b, c, v), (c, a, v)}
     return rotation_lists(faces, n)
+
+
+@pytest.mark.parametrize("n", range(4, 12))
+def test_bitset_path_equals_general_path_on_every_triangulation(plantri_output, n):
+    batch = next(read_dataset(str(plantri_output(n)), chunk_size=10**6))
+    assert classify(batch).equals(classify(batch, max_bitset_faces=0))
+
+
+@settings(max_examples=100, deadline=None)
+@given(st.lists(triangulations(max_vertices=40, max_flips=80), min_size=1, max_size=5))
+def test_bitset_path_equals_general_path_on_random_triangulations(grains):
+    batch = GrainBatch.from_lists(grains)
+    assert classify(batch).equals(classify(batch, max_bitset_faces=0))

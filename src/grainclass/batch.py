@@ -2,9 +2,14 @@
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
+
+if TYPE_CHECKING:
+    import pyarrow as pa
 
 
 @dataclass(frozen=True)
@@ -15,7 +20,7 @@ class GrainBatch:
     ----------
     source : str
         Name of the input (a path, or ``-`` for standard input).
-    grain_id : list of str
+    grain_id : list of str or pyarrow.StringArray
         One id per grain.
     location : numpy.ndarray of int64, shape (G,)
         Where each grain starts in the input: a line number (text) or record number (binary).
@@ -27,8 +32,8 @@ class GrainBatch:
         Face ``f`` has the neighbours ``neighbors[nbr_offsets[f]:nbr_offsets[f + 1]]``.
     neighbors : numpy.ndarray of int32, shape (M,)
         0-based indices of neighbouring faces, local to the grain, in cyclic order where known.
-    parse_error : list of (str or None)
-        Why a grain could not be read (it then has no faces), or None.
+    parse_errors : dict of int to str
+        Why a grain could not be read (it then has no faces), by position in the batch.
     volume, area : numpy.ndarray of float64, shape (G,), optional
         Grain volume and surface area where the input gives them (NaN where it does not).
     attributes : dict of str to list of (str or None)
@@ -36,15 +41,15 @@ class GrainBatch:
     """
 
     source: str
-    grain_id: list[str]
+    grain_id: Sequence[str] | pa.Array
     location: np.ndarray
     location_kind: str
     face_offsets: np.ndarray
     nbr_offsets: np.ndarray
     neighbors: np.ndarray
-    parse_error: list[str | None]
     volume: np.ndarray | None = None
     area: np.ndarray | None = None
+    parse_errors: dict[int, str] = field(default_factory=dict)
     attributes: dict[str, list[str | None]] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
@@ -63,8 +68,8 @@ class GrainBatch:
             raise ValueError("nbr_offsets must have one entry per face plus a leading 0")
         if self.neighbors.shape != (self.nbr_offsets[-1],):
             raise ValueError("neighbors must end where nbr_offsets says")
-        if len(self.location) != g or len(self.parse_error) != g:
-            raise ValueError("location and parse_error need one entry per grain")
+        if len(self.location) != g:
+            raise ValueError("location needs one entry per grain")
 
     def __len__(self) -> int:
         return len(self.grain_id)
@@ -102,5 +107,4 @@ class GrainBatch:
             face_offsets=np.concatenate([[0], np.cumsum(n_faces, dtype=np.int64)]),
             nbr_offsets=np.concatenate([[0], np.cumsum(degrees, dtype=np.int64)]),
             neighbors=np.asarray(flat, dtype=np.int32),
-            parse_error=[None] * len(grains),
         )

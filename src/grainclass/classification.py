@@ -7,10 +7,9 @@ import pyarrow as pa
 
 from grainclass import schema
 from grainclass._kernels import codes
+from grainclass._kernels.bits import MAX_BITSET_FACES
+from grainclass.arrow import repeated_string, string_array, strings_from_codes
 from grainclass.batch import GrainBatch
-
-_FAMILY_NAMES = np.array(codes.FAMILY_NAMES, dtype=object)
-_STATUS_NAMES = np.array(codes.STATUS_NAMES, dtype=object)
 
 _MESSAGES = {
     codes.E_TOO_FEW_FACES: "{a} faces; a grain needs at least 4",
@@ -46,7 +45,7 @@ def _error_messages(batch: GrainBatch, status: np.ndarray, err: np.ndarray) -> l
     for g in np.flatnonzero(status != codes.OK):
         code, a, b = (int(x) for x in err[g])
         if code == codes.E_PARSE:
-            what = batch.parse_error[g] or "unreadable record"
+            what = batch.parse_errors.get(int(g), "unreadable record")
         else:
             n = int(n_faces[g])
             what = _MESSAGES[code].format(a=a, b=b, n=n, last=n - 1, edges=3 * n - 6)
@@ -55,67 +54,43 @@ def _error_messages(batch: GrainBatch, status: np.ndarray, err: np.ndarray) -> l
 
 
 def _nullable(values: np.ndarray, valid: np.ndarray, type_: pa.DataType) -> pa.Array:
-    return pa.array(values, type=type_, mask=~valid)
+    return pa.array(values, type=type_, mask=None if valid.all() else ~valid)
 
 
-def _p_vectors(batch: GrainBatch, ok: np.ndarray) -> tuple[pa.Array, np.ndarray]:
-    """p-vectors (faces with 3, 4, ... sides up to the largest) and triangle counts per grain."""
-    n_faces = batch.n_faces
-    degree = np.diff(batch.nbr_offsets)
-    grain_of_face = np.repeat(np.arange(len(batch)), n_faces)
-    face_ok = ok[grain_of_face]
-    largest = np.zeros(len(batch), np.int64)
-    np.maximum.at(largest, grain_of_face[face_ok], degree[face_ok])
-    lengths = np.where(ok, largest - 2, 0)
-    list_offsets = np.concatenate([[0], np.cumsum(lengths)])
-    slot = list_offsets[grain_of_face[face_ok]] + degree[face_ok] - 3
-    counts = np.bincount(slot, minlength=int(list_offsets[-1])).astype(np.int32)
-    p_vector = pa.ListArray.from_arrays(
-        pa.array(list_offsets.astype(np.int32)), pa.array(counts), mask=pa.array(~ok)
-    )
-    triangles = np.bincount(grain_of_face[face_ok & (degree == 3)], minlength=len(batch))
-    return p_vector, triangles
-
-
-def _trees_column(
-    offsets: np.ndarray, data: np.ndarray, length: np.ndarray, valid: np.ndarray
-) -> pa.Array:
-    """Compact the kernel's fixed-size slots into an Arrow string array."""
-    size = np.diff(offsets)
-    local = np.arange(int(offsets[-1])) - np.repeat(offsets[:-1], size)
-    keep = local < np.repeat(length, size)
-    string_offsets = np.concatenate([[0], np.cumsum(length)]).astype(np.int32)
-    validity = pa.py_buffer(np.packbits(valid, bitorder="little"))
-    return pa.Array.from_buffers(
-        pa.string(),
-        len(length),
-        [validity, pa.py_buffer(string_offsets), pa.py_buffer(data[keep])],
-    )
-
-
-def _class_names(family: np.ndarray, truncations: np.ndarray, n_trees: np.ndarray) -> np.ndarray:
-    names = np.full(len(family), None, dtype=object)
+def _class_codes(family: np.ndarray, truncations: np.ndarray, n_trees: np.ndarray) -> np.ndarray:
+    """Index into ``schema.CLASSES`` per grain, -1 when not ok."""
     flag = family == codes.FLAG
     sc = family == codes.SC
-    names[family == codes.STACKED] = "stacked"
-    names[flag & (truncations == 0)] = "flag"
-    names[flag & (truncations == 1)] = "flag+1"
-    names[flag & (truncations == 2) & (n_trees == 2)] = "flag+1+1"
-    names[flag & (truncations == 2) & (n_trees == 1)] = "flag+2"
-    names[flag & (truncations >= 3)] = "flag>=3"
-    names[sc & (truncations == 0)] = "sc"
-    names[sc & (truncations == 1)] = "sc+1"
-    names[sc & (truncations >= 2)] = "sc>=2"
-    return names
+    conditions = [
+        family == codes.STACKED,
+        flag & (truncations == 0),
+        flag & (truncations == 1),
+        flag & (truncations == 2) & (n_trees == 2),
+        flag & (truncations == 2) & (n_trees == 1),
+        flag & (truncations >= 3),
+        sc & (truncations == 0),
+        sc & (truncations == 1),
+        sc & (truncations >= 2),
+    ]
+    return np.select(conditions, np.arange(len(conditions)), -1)
 
 
-def classify(batch: GrainBatch) -> pa.Table:
+def _float_column(values: np.ndarray | None, length: int) -> pa.Array:
+    if values is None:
+        return pa.nulls(length, pa.float64())
+    return pa.array(values, pa.float64(), from_pandas=True)
+
+
+def classify(batch: GrainBatch, max_bitset_faces: int = MAX_BITSET_FACES) -> pa.Table:
     """Classify every grain of a batch (Lutz et al., Secs. II-III and App. B).
 
     Parameters
     ----------
     batch : GrainBatch
         Grains as flat face-adjacency arrays, as the readers produce them.
+    max_bitset_faces : int
+        Grains with at most this many faces (64 at most) may take the fast bitset path; 0 sends
+        every grain through the general path (the tests compare the two).
 
     Returns
     -------
@@ -132,11 +107,15 @@ def classify(batch: GrainBatch) -> pa.Table:
     >>> row["class"], row["split_k"], row["split_m"], row["penalty"]
     ('flag', 1, 1, 18)
     """
+    import numba
+
     from grainclass._kernels.batch import _classify_batch
+    from grainclass._kernels.columns import _compact, _p_vectors
 
     g = len(batch)
     n_faces = batch.n_faces
-    parsed = np.array([e is None for e in batch.parse_error], dtype=np.bool_)
+    parsed = np.ones(g, np.bool_)
+    parsed[list(batch.parse_errors)] = False
     status = np.zeros(g, np.int8)
     err = np.zeros((g, 3), np.int64)
     family = np.full(g, -1, np.int8)
@@ -144,14 +123,17 @@ def classify(batch: GrainBatch) -> pa.Table:
     n_trees = np.zeros(g, np.int32)
     depth = np.zeros(g, np.int32)
     belts = np.zeros((g, 3), np.int64)
-    tree_offsets = np.concatenate([[0], np.cumsum(3 * n_faces)]).astype(np.int64)
-    tree_bytes = np.zeros(int(tree_offsets[-1]), np.uint8)
+    tree_offsets = np.zeros(g + 1, np.int64)
+    np.cumsum(3 * n_faces, out=tree_offsets[1:])
+    tree_bytes = np.empty(int(tree_offsets[-1]), np.uint8)
     tree_length = np.zeros(g, np.int64)
     _classify_batch(
         batch.face_offsets,
         batch.nbr_offsets,
         batch.neighbors,
         parsed,
+        max_bitset_faces,
+        16 * numba.get_num_threads(),  # blocks: enough to balance the threads' load
         status,
         err,
         family,
@@ -167,38 +149,50 @@ def classify(batch: GrainBatch) -> pa.Table:
     ok = status == codes.OK
     truncations = n_faces - fundamental
     stacked = family == codes.STACKED
-    flag_family = family == codes.FLAG
     has_trees = ok & ~stacked
-    is_flag = flag_family & (truncations == 0)
-    p_vector, triangles = _p_vectors(batch, ok)
+    is_flag = (family == codes.FLAG) & (truncations == 0)
+    p_offsets, p_counts, triangles = _p_vectors(batch.face_offsets, batch.nbr_offsets, ok)
+    trees = string_array(*_compact(tree_offsets, tree_bytes, tree_length), has_trees)
     split_k = belts[:, 0]
-    volume = batch.volume if batch.volume is not None else np.full(g, np.nan)
-    area = batch.area if batch.area is not None else np.full(g, np.nan)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        isoperimetric = 36 * np.pi * volume**2 / area**3
+    volume, area = batch.volume, batch.area
+    isoperimetric = None
+    if volume is not None and area is not None:
+        with np.errstate(divide="ignore", invalid="ignore"):
+            isoperimetric = 36 * np.pi * volume**2 / area**3
+    grain_id = batch.grain_id
+    if not isinstance(grain_id, pa.Array):
+        grain_id = pa.array(grain_id, pa.string())
 
     columns = {
-        schema.GRAIN_ID: pa.array(batch.grain_id, pa.string()),
-        schema.SOURCE: pa.array([batch.source] * g, pa.string()),
-        schema.STATUS: pa.array(_STATUS_NAMES[status], pa.string()),
-        schema.ERROR: pa.array(_error_messages(batch, status, err), pa.string()),
+        schema.GRAIN_ID: grain_id,
+        schema.SOURCE: repeated_string(batch.source, g),
+        schema.STATUS: strings_from_codes(status, codes.STATUS_NAMES),
+        schema.ERROR: (
+            pa.nulls(g, pa.string())
+            if ok.all()
+            else pa.array(_error_messages(batch, status, err), pa.string())
+        ),
         schema.N_FACES: _nullable(n_faces, parsed, pa.int32()),
         schema.N_TRIANGLES: _nullable(triangles, ok, pa.int32()),
-        schema.P_VECTOR: p_vector,
-        schema.FAMILY: pa.array(_FAMILY_NAMES[np.where(ok, family, 0)], pa.string(), mask=~ok),
-        schema.CLASS: pa.array(_class_names(family, truncations, n_trees), pa.string()),
+        schema.P_VECTOR: pa.ListArray.from_arrays(
+            pa.array(p_offsets), pa.array(p_counts), mask=None if ok.all() else pa.array(~ok)
+        ),
+        schema.FAMILY: strings_from_codes(family, codes.FAMILY_NAMES),
+        schema.CLASS: strings_from_codes(
+            _class_codes(family, truncations, n_trees), schema.CLASSES
+        ),
         schema.TRUNCATIONS: _nullable(truncations, ok, pa.int32()),
         schema.FUNDAMENTAL_FACES: _nullable(fundamental, ok, pa.int32()),
-        schema.TREES: _trees_column(tree_offsets, tree_bytes, tree_length, has_trees),
+        schema.TREES: trees,
         schema.DEPTH: _nullable(depth, has_trees, pa.int32()),
-        schema.ROUND_K: _nullable(truncations, ok & (stacked | flag_family), pa.int32()),
+        schema.ROUND_K: _nullable(truncations, ok & (family != codes.SC), pa.int32()),
         schema.SPLIT_K: _nullable(split_k, is_flag, pa.int32()),
         schema.SPLIT_M: _nullable(n_faces - 4 - split_k, is_flag, pa.int32()),
         schema.BELTS4: _nullable(belts[:, 1], is_flag, pa.int32()),
         schema.PENALTY: _nullable(n_faces * belts[:, 2], is_flag, pa.int64()),
-        schema.VOLUME: pa.array(volume, pa.float64(), from_pandas=True),
-        schema.AREA: pa.array(area, pa.float64(), from_pandas=True),
-        schema.ISOPERIMETRIC: pa.array(isoperimetric, pa.float64(), from_pandas=True),
+        schema.VOLUME: _float_column(volume, g),
+        schema.AREA: _float_column(area, g),
+        schema.ISOPERIMETRIC: _float_column(isoperimetric, g),
     }
     table = pa.table(columns, schema=schema.GRAIN_SCHEMA)
     for key, values in batch.attributes.items():

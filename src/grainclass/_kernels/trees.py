@@ -45,47 +45,62 @@ def _sort_slices(items, count, buf, start, length, by_length_first):
 
 
 @njit
-def _truncation_forest(n, alive, removed_round, link, out):
-    """Write the canonical forest string into ``out`` (uint8, at least 3n long).
-
-    Returns ``(n_trees, depth, length)``: depth is the number of vertices on a longest root
-    path. O(t^2) for t truncations.
-    """
-    parent = np.full(n, -1, np.int32)
-    n_nodes = 0
-    last_round = 0
+def _parents_from_links(n, alive, removed_round, link, parent):
+    """Parent of each removed vertex: the vertex of its link that was removed first, else -1."""
     for v in range(n):
+        parent[v] = -1
         if alive[v]:
             continue
-        n_nodes += 1
-        last_round = max(last_round, removed_round[v])
-        best = -1
         for k in range(3):
             x = link[v, k]
-            if not alive[x] and (best < 0 or removed_round[x] < removed_round[best]):
-                best = x
-        parent[v] = best
-    # Children in CSR form.
-    n_children = np.zeros(n + 1, np.int32)
+            if not alive[x] and (parent[v] < 0 or removed_round[x] < removed_round[parent[v]]):
+                parent[v] = x
+
+
+@njit
+def _forest_scratch(n):
+    """Scratch arrays for :func:`_forest_string` on up to n vertices."""
+    return (
+        np.empty(n + 1, np.int32),  # child offsets
+        np.empty(max(n, 1), np.int32),  # children
+        np.empty(n * (n + 1) + 1, np.uint8),  # strings of the subtrees
+        np.empty(n, np.int64),  # start of each subtree's string
+        np.empty(n, np.int64),  # its length
+        np.empty(n, np.int32),  # subtree height
+        np.empty(max(n, 1), np.int32),  # roots
+    )
+
+
+@njit
+def _forest_string(n, removed_round, parent, out, scratch):
+    """Write the canonical forest string of the removed vertices into ``out`` (>= 3n bytes).
+
+    Nodes are the vertices with ``removed_round > 0``; ``parent`` is -1 for roots. ``scratch``
+    comes from :func:`_forest_scratch`. Returns ``(n_trees, depth, length)``: depth is the number
+    of vertices on a longest root path. O(t^2) for t truncations.
+    """
+    child_off, children, buf, start, length, height, roots = scratch
+    last_round = 0
+    for v in range(n + 1):
+        child_off[v] = 0
     for v in range(n):
-        if parent[v] >= 0:
-            n_children[parent[v] + 1] += 1
-    child_off = np.cumsum(n_children)
-    children = np.empty(max(n_nodes, 1), np.int32)
-    fill = child_off[:-1].copy()
+        last_round = max(last_round, removed_round[v])
+        if removed_round[v] > 0 and parent[v] >= 0:
+            child_off[parent[v] + 1] += 1
     for v in range(n):
-        if parent[v] >= 0:
-            children[fill[parent[v]]] = v
-            fill[parent[v]] += 1
+        child_off[v + 1] += child_off[v]
+    for v in range(n):  # place children, advancing each offset to the next one's value ...
+        if removed_round[v] > 0 and parent[v] >= 0:
+            children[child_off[parent[v]]] = v
+            child_off[parent[v]] += 1
+    for v in range(n - 1, -1, -1):  # ... and shift them back
+        child_off[v + 1] = child_off[v]
+    child_off[0] = 0
     # Children are removed in earlier rounds than their parent: build strings round by round.
-    buf = np.empty(n_nodes * (n_nodes + 1) + 1, np.uint8)
-    start = np.zeros(n, np.int64)
-    length = np.zeros(n, np.int64)
-    height = np.zeros(n, np.int32)
     pos = 0
     for rnd in range(1, last_round + 1):
         for v in range(n):
-            if alive[v] or removed_round[v] != rnd:
+            if removed_round[v] != rnd:
                 continue
             first, count = child_off[v], child_off[v + 1] - child_off[v]
             kids = children[first : first + count]
@@ -102,11 +117,10 @@ def _truncation_forest(n, alive, removed_round, link, out):
             pos += 1
             length[v] = pos - start[v]
             height[v] = tallest + 1
-    roots = np.empty(max(n_nodes, 1), np.int32)
     n_roots = 0
     depth = 0
     for v in range(n):
-        if not alive[v] and parent[v] < 0:
+        if removed_round[v] > 0 and parent[v] < 0:
             roots[n_roots] = v
             n_roots += 1
             depth = max(depth, height[v])

@@ -27,7 +27,7 @@ class _Chunk:
         self.n_faces: list[int] = []
         self.degrees: list[int] = []
         self.neighbors: list[int] = []
-        self.parse_error: list[str | None] = []
+        self.parse_errors: dict[int, str] = {}
         self.floats: dict[str, list[float]] = {key: [] for key in FLOAT_KEYS}
         self.attributes: dict[str, list[str | None]] = {}
 
@@ -68,7 +68,8 @@ class _Chunk:
         g = len(self.grain_id)
         self.grain_id.append(grain_id or f"line{line_no}")
         self.location.append(line_no)
-        self.parse_error.append(error)
+        if error is not None:
+            self.parse_errors[g] = error
         self.n_faces.append(len(faces))
         for nbrs in faces:
             self.degrees.append(len(nbrs))
@@ -90,7 +91,7 @@ class _Chunk:
             face_offsets=np.concatenate([[0], np.cumsum(self.n_faces, dtype=np.int64)]),
             nbr_offsets=np.concatenate([[0], np.cumsum(self.degrees, dtype=np.int64)]),
             neighbors=np.asarray(self.neighbors, np.int32),
-            parse_error=self.parse_error,
+            parse_errors=self.parse_errors,
             volume=np.asarray(self.floats["volume"], np.float64),
             area=np.asarray(self.floats["area"], np.float64),
             attributes=self.attributes,

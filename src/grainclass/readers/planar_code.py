@@ -44,6 +44,7 @@ def read_planar_code(stream: BinaryIO, source: str, chunk_size: int) -> Iterator
         input becomes an unreadable grain with its own row.
     """
     from grainclass._kernels.planar_code import _fill, _scan
+    from grainclass.arrow import decimal_strings
 
     big_endian, pending = _read_header(stream, stream.read(32))
     record = 1
@@ -70,13 +71,12 @@ def read_planar_code(stream: BinaryIO, source: str, chunk_size: int) -> Iterator
         _fill(buf, big_endian, records, face_offsets, nbr_offsets, neighbors)
         yield GrainBatch(
             source=source,
-            grain_id=[str(i) for i in range(record, record + records)],
+            grain_id=decimal_strings(np.arange(record, record + records)),
             location=np.arange(record, record + records, dtype=np.int64),
             location_kind="record",
             face_offsets=face_offsets,
             nbr_offsets=nbr_offsets,
             neighbors=neighbors,
-            parse_error=[None] * records,
         )
         record += records
         pending = pending[consumed:]
@@ -91,5 +91,5 @@ def _cut_off(source: str, record: int, n_bytes: int) -> GrainBatch:
         face_offsets=np.zeros(2, np.int64),
         nbr_offsets=np.zeros(1, np.int64),
         neighbors=np.zeros(0, np.int32),
-        parse_error=[f"the input ends in the middle of this record ({n_bytes} bytes left)"],
+        parse_errors={0: f"the input ends in the middle of this record ({n_bytes} bytes left)"},
     )

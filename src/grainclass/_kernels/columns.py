@@ -1,0 +1,83 @@
+"""Kernels that lay out output columns as Arrow buffers, so no Python loop runs per grain."""
+
+import numpy as np
+
+from grainclass._numba import njit
+
+
+@njit
+def _p_vectors(face_offsets, nbr_offsets, ok):
+    """p-vectors as a list column: (offsets int32[G+1], counts int32[...], triangles int32[G]).
+
+    Grain g's list has one count per face size 3 .. its largest (empty when not ok).
+    """
+    n_grains = face_offsets.shape[0] - 1
+    offsets = np.zeros(n_grains + 1, np.int32)
+    triangles = np.zeros(n_grains, np.int32)
+    for g in range(n_grains):
+        largest = 2
+        if ok[g]:
+            for f in range(face_offsets[g], face_offsets[g + 1]):
+                largest = max(largest, nbr_offsets[f + 1] - nbr_offsets[f])
+        offsets[g + 1] = offsets[g] + largest - 2
+    counts = np.zeros(offsets[n_grains], np.int32)
+    for g in range(n_grains):
+        if ok[g]:
+            for f in range(face_offsets[g], face_offsets[g + 1]):
+                size = nbr_offsets[f + 1] - nbr_offsets[f]
+                counts[offsets[g] + size - 3] += 1
+                if size == 3:
+                    triangles[g] += 1
+    return offsets, counts, triangles
+
+
+@njit
+def _compact(slot_offsets, data, lengths):
+    """Strings written at ``data[slot_offsets[g]:]`` with ``lengths[g]`` bytes, packed tightly.
+
+    Returns Arrow string buffers (offsets int32[G+1], bytes).
+    """
+    n = lengths.shape[0]
+    offsets = np.zeros(n + 1, np.int32)
+    for g in range(n):
+        offsets[g + 1] = offsets[g] + lengths[g]
+    packed = np.empty(offsets[n], np.uint8)
+    for g in range(n):
+        packed[offsets[g] : offsets[g + 1]] = data[slot_offsets[g] : slot_offsets[g] + lengths[g]]
+    return offsets, packed
+
+
+@njit
+def _strings_from_codes(codes, names, name_offsets):
+    """Arrow string buffers for ``names[codes[g]]``; a negative code gives an empty string."""
+    n = codes.shape[0]
+    offsets = np.zeros(n + 1, np.int32)
+    for g in range(n):
+        c = codes[g]
+        offsets[g + 1] = offsets[g] + (name_offsets[c + 1] - name_offsets[c] if c >= 0 else 0)
+    data = np.empty(offsets[n], np.uint8)
+    for g in range(n):
+        c = codes[g]
+        if c >= 0:
+            data[offsets[g] : offsets[g + 1]] = names[name_offsets[c] : name_offsets[c + 1]]
+    return offsets, data
+
+
+@njit
+def _decimal_strings(values):
+    """Arrow string buffers for the decimal digits of non-negative integers."""
+    n = values.shape[0]
+    offsets = np.zeros(n + 1, np.int32)
+    for g in range(n):
+        digits, v = 1, values[g]
+        while v >= 10:
+            v //= 10
+            digits += 1
+        offsets[g + 1] = offsets[g] + digits
+    data = np.empty(offsets[n], np.uint8)
+    for g in range(n):
+        v = values[g]
+        for i in range(offsets[g + 1] - 1, offsets[g] - 1, -1):
+            data[i] = 48 + v % 10
+            v //= 10
+    return offsets, data
