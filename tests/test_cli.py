@@ -239,3 +239,13 @@ def test_help_imports_nothing_heavy():
         [sys.executable, "-c", code], capture_output=True, text=True, check=True
     )
     assert result.stdout.splitlines()[-1] == "[]"
+
+
+def test_classify_output_gets_ordinary_file_permissions(runner, tmp_path):
+    import os
+
+    result, out = _classify(runner, tmp_path, EXAMPLES / "polytopes.txt")
+    assert result.exit_code == 0
+    umask = os.umask(0)
+    os.umask(umask)
+    assert out.stat().st_mode & 0o777 == 0o666 & ~umask

@@ -95,6 +95,10 @@ class GrainTableWriter:
         finally:
             if self._tmp is not None:
                 if exc_type is None:
+                    # mkstemp makes the file private; give it the permissions open() would.
+                    umask = os.umask(0)
+                    os.umask(umask)
+                    os.chmod(self._tmp, 0o666 & ~umask)
                     os.replace(self._tmp, self.path)
                 elif os.path.exists(self._tmp):
                     os.unlink(self._tmp)
