@@ -18,8 +18,8 @@ class GrainBatch:
 
     Attributes
     ----------
-    source : str
-        Name of the input (a path, or ``-`` for standard input).
+    source : str or list of str
+        Name of the input (a path, or ``-`` for standard input), or one name per grain.
     grain_id : list of str or pyarrow.StringArray
         One id per grain.
     location : numpy.ndarray of int64, shape (G,)
@@ -40,7 +40,7 @@ class GrainBatch:
         Further ``key=value`` fields of the input, kept as string columns.
     """
 
-    source: str
+    source: str | list[str]
     grain_id: Sequence[str] | pa.Array
     location: np.ndarray
     location_kind: str
@@ -70,6 +70,8 @@ class GrainBatch:
             raise ValueError("neighbors must end where nbr_offsets says")
         if len(self.location) != g:
             raise ValueError("location needs one entry per grain")
+        if not isinstance(self.source, str) and len(self.source) != g:
+            raise ValueError("source needs one entry per grain, or one for all")
 
     def __len__(self) -> int:
         return len(self.grain_id)

@@ -34,9 +34,10 @@ _MESSAGES = {
 
 
 def _where(batch: GrainBatch, g: int) -> str:
+    source = batch.source if isinstance(batch.source, str) else batch.source[g]
     if batch.location_kind == "line":
-        return f"{batch.source}:{batch.location[g]}"
-    return f"{batch.source}: record {batch.location[g]}"
+        return f"{source}:{batch.location[g]}"
+    return f"{source}: record {batch.location[g]}"
 
 
 def _error_messages(batch: GrainBatch, status: np.ndarray, err: np.ndarray) -> list[str | None]:
@@ -165,7 +166,11 @@ def classify(batch: GrainBatch, max_bitset_faces: int = MAX_BITSET_FACES) -> pa.
 
     columns = {
         schema.GRAIN_ID: grain_id,
-        schema.SOURCE: repeated_string(batch.source, g),
+        schema.SOURCE: (
+            repeated_string(batch.source, g)
+            if isinstance(batch.source, str)
+            else pa.array(batch.source, pa.string())
+        ),
         schema.STATUS: strings_from_codes(status, codes.STATUS_NAMES),
         schema.ERROR: (
             pa.nulls(g, pa.string())

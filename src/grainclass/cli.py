@@ -20,8 +20,15 @@ Exit codes:
   130  interrupted (no partial output file is left behind)
 """
 
-INPUT_FORMATS = ("auto", "adjacency", "planar_code")
+INPUT_FORMATS = ("auto", "adjacency", "planar_code", "evolver")
 STATUSES = ("ok", "degenerate", "non_simple", "invalid")
+
+
+def _key_value(ctx: click.Context, param: click.Parameter, value: str) -> tuple[str, str]:
+    key, sep, val = value.partition("=")
+    if not sep or not key.strip() or not val.strip():
+        raise click.BadParameter(f"expected KEY=VALUE, got {value!r}")
+    return key.strip(), val.strip()
 
 
 @click.group(epilog=EXIT_CODES, context_settings={"help_option_names": ["-h", "--help"]})
@@ -53,6 +60,14 @@ def cli() -> None:
     show_default=True,
     help="Input format; 'auto' sniffs each input.",
 )
+@click.option(
+    "--triple-edges",
+    default="color=red",
+    show_default=True,
+    metavar="KEY=VALUE",
+    callback=_key_value,
+    help="Surface Evolver: the edge attribute that marks triple lines.",
+)
 @click.option("--strict", is_flag=True, help="Exit 1 if any grain is not a simple polytope.")
 @click.option(
     "--chunk-size",
@@ -66,14 +81,16 @@ def classify_cmd(
     inputs: tuple[str, ...],
     output: str,
     input_format: str,
+    triple_edges: tuple[str, str],
     strict: bool,
     chunk_size: int,
     quiet: bool,
 ) -> None:
     """Classify every grain of INPUT... into a per-grain Parquet table.
 
-    INPUT is adjacency text (one grain per line) or plantri's planar_code; '-' reads standard
-    input, e.g. `plantri 12 | grainclass classify - -o all12.parquet`.
+    INPUT is adjacency text (one grain per line), plantri's planar_code, or Surface Evolver
+    datafiles (a folder stands for its *.fe files); '-' reads standard input, e.g.
+    `plantri 12 | grainclass classify - -o all12.parquet`.
     """
     from grainclass.classification import classify
     from grainclass.errors import GrainclassError
@@ -84,7 +101,7 @@ def classify_cmd(
     counts: dict[str, int] = {}
     try:
         with GrainTableWriter(output) as writer:
-            for batch in read_dataset(list(inputs), fmt, chunk_size):
+            for batch in read_dataset(list(inputs), fmt, chunk_size, triple_edges):
                 table = classify(batch)
                 for item in table.column("status").value_counts().to_pylist():
                     counts[item["values"]] = counts.get(item["values"], 0) + item["counts"]

@@ -7,6 +7,8 @@ and text never does.
 from __future__ import annotations
 
 import io
+import os
+import re
 import sys
 from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
@@ -15,9 +17,11 @@ from typing import BinaryIO
 from grainclass.batch import GrainBatch
 from grainclass.errors import InputError
 from grainclass.readers.adjacency import read_adjacency
+from grainclass.readers.evolver import DEFAULT_TRIPLE_EDGES, read_evolver
 from grainclass.readers.planar_code import read_planar_code
 
-FORMATS = ("adjacency", "planar_code")
+FORMATS = ("adjacency", "planar_code", "evolver")
+_EVOLVER = re.compile(rb"(?im)^\s*(vertices|torus_filled|torus|periods)\s*(//.*)?$")
 DEFAULT_CHUNK_SIZE = 50_000
 
 
@@ -30,10 +34,42 @@ def sniff(head: bytes) -> str:
     'planar_code'
     >>> sniff(b"cube\\t1 2 3 4;0 4 5 2")
     'adjacency'
+    >>> sniff(b"// a foam\\nvertices\\n1 0 0 0\\n")
+    'evolver'
     """
     if head.startswith(b">>planar_code") or b"\x00" in head:
         return "planar_code"
+    if _EVOLVER.search(head):
+        return "evolver"
     return "adjacency"
+
+
+def _sniff_path(path: str, format: str | None) -> str:
+    if format is not None:
+        return format
+    if path != "-" and path.lower().endswith(".fe"):
+        return "evolver"
+    if path == "-":
+        return ""  # sniffed from the stream itself
+    try:
+        with open(path, "rb") as handle:
+            return sniff(handle.read(4096))
+    except OSError as exc:
+        raise InputError(path, exc.strerror or str(exc)) from None
+
+
+def _expand(paths: Sequence[str]) -> list[str]:
+    """A folder stands for its ``*.fe`` files, in name order (one grain-growth dump)."""
+    expanded = []
+    for path in paths:
+        if path != "-" and os.path.isdir(path):
+            files = sorted(f for f in os.listdir(path) if f.lower().endswith(".fe"))
+            if not files:
+                raise InputError(path, "a folder given as input must hold *.fe files")
+            expanded += [os.path.join(path, f) for f in files]
+        else:
+            expanded.append(path)
+    return expanded
 
 
 @contextmanager
@@ -55,17 +91,20 @@ def read_dataset(
     paths: Sequence[str] | str,
     format: str | None = None,
     chunk_size: int = DEFAULT_CHUNK_SIZE,
+    triple_edges: tuple[str, str] = DEFAULT_TRIPLE_EDGES,
 ) -> Iterator[GrainBatch]:
     """Read grains from one or more inputs, in order, as batches.
 
     Parameters
     ----------
     paths : str or sequence of str
-        Files to read; ``-`` is standard input.
-    format : {None, "adjacency", "planar_code"}
-        The input format; None sniffs it from each input's first bytes.
+        Files to read; ``-`` is standard input; a folder stands for its ``*.fe`` files.
+    format : {None, "adjacency", "planar_code", "evolver"}
+        The input format; None sniffs it from each input (``.fe`` files are Surface Evolver).
     chunk_size : int
         Grains per batch at most.
+    triple_edges : (str, str)
+        Surface Evolver only: the edge attribute and value marking triple lines.
 
     Yields
     ------
@@ -80,10 +119,24 @@ def read_dataset(
         paths = [paths]
     if format is not None and format not in FORMATS:
         raise ValueError(f"unknown format {format!r}; expected one of {', '.join(FORMATS)}")
-    for path in paths:
+    paths = _expand(paths)
+    formats = [_sniff_path(path, format) for path in paths]
+    k = 0
+    while k < len(paths):
+        if formats[k] == "evolver":  # consecutive .fe files are read as one dataset
+            end = k
+            while end < len(paths) and formats[end] == "evolver":
+                end += 1
+            yield from read_evolver(paths[k:end], chunk_size, triple_edges)
+            k = end
+            continue
+        path = paths[k]
+        k += 1
         with _open(path) as stream:
-            fmt = format or sniff(stream.peek(4096)[:4096])
+            fmt = formats[k - 1] or sniff(stream.peek(4096)[:4096])
             try:
+                if fmt == "evolver":
+                    raise InputError(path, "Surface Evolver input must be a file or a folder")
                 if fmt == "planar_code":
                     yield from read_planar_code(stream, path, chunk_size)
                 else:
