@@ -14,6 +14,7 @@ unless the body gives its ``volume``.
 
 from __future__ import annotations
 
+import itertools
 import re
 from collections import defaultdict
 from collections.abc import Iterable, Iterator
@@ -217,7 +218,7 @@ def _measure(data: _Datafile, facets: list[list[tuple[int, int, int]]]) -> tuple
     """Signed volume and area of a closed body, in a frame unwrapped from one of its vertices."""
     step: dict[int, list[tuple[int, np.ndarray]]] = defaultdict(list)
     for darts in facets:
-        for tail, head, e in darts:
+        for _, _, e in darts:
             t, h, wrap, _ = data.edges[e]
             shift = wrap @ data.periods if data.periods is not None else 0.0
             delta = data.coords[h] + shift - data.coords[t]
@@ -235,7 +236,7 @@ def _measure(data: _Datafile, facets: list[list[tuple[int, int, int]]]) -> tuple
     volume = area = 0.0
     for darts in facets:
         corners = [position[tail] for tail, _, _ in darts]
-        for b, c in zip(corners[1:-1], corners[2:], strict=True):
+        for b, c in itertools.pairwise(corners[1:]):
             cross = np.cross(b - corners[0], c - corners[0])
             area += 0.5 * float(np.linalg.norm(cross))
             volume += float(np.dot(corners[0], np.cross(b, c))) / 6.0
