@@ -108,7 +108,7 @@ def test_ctrl_c_exits_130(monkeypatch, tmp_path, capsys):
     def interrupted(batch):
         raise KeyboardInterrupt
 
-    monkeypatch.setattr("grainclass.classification.classify", interrupted)
+    monkeypatch.setattr("grainclass.pipeline.classify", interrupted)
     out = tmp_path / "out.parquet"
     monkeypatch.setattr(
         sys, "argv", ["grainclass", "classify", str(EXAMPLES / "polytopes.txt"), "-o", str(out)]
@@ -212,10 +212,26 @@ def test_summarize_reads_standard_input(runner, grains_parquet):
     assert result.stdout.splitlines()[1].startswith("all,246,")
 
 
-def test_summarize_rejects_a_non_parquet_file_with_exit_1(runner):
-    result = runner.invoke(cli, ["summarize", str(EXAMPLES / "polytopes.txt")])
+def test_summarize_classifies_raw_inputs_on_the_fly(runner, grains_parquet):
+    raw = [str(EXAMPLES / "polytopes.txt"), str(EXAMPLES / "plantri-10.pc")]
+    from_raw = runner.invoke(cli, ["summarize", *raw, "--format", "json", "--chunk-size", "7"])
+    from_parquet = runner.invoke(cli, ["summarize", str(grains_parquet), "--format", "json"])
+    assert from_raw.exit_code == 0
+    assert json.loads(from_raw.stdout) == json.loads(from_parquet.stdout)
+
+
+def test_summarize_reads_raw_standard_input(runner):
+    result = runner.invoke(
+        cli, ["summarize", "-", "--table", "classes", "--format", "csv"], input=CUBE_LINE * 2
+    )
+    assert result.exit_code == 0
+    assert result.stdout.splitlines()[1] == "6,2,0,2,0,0,0,0,0,0,0"
+
+
+def test_summarize_missing_input_exits_1(runner, tmp_path):
+    result = runner.invoke(cli, ["summarize", str(tmp_path / "nope.parquet")])
     assert result.exit_code == 1
-    assert "not a grainclass Parquet table" in result.stderr
+    assert "No such file or directory" in result.stderr
 
 
 def test_python_m_grainclass_runs(tmp_path):

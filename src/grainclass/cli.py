@@ -43,6 +43,63 @@ def cli() -> None:
     """
 
 
+def _input_options(*format_flags: str):
+    """Options shared by every command that reads grains; the input format goes by
+    ``format_flags`` (``--format`` is summarize's output format)."""
+    options = [
+        click.option(
+            *format_flags,
+            "input_format",
+            type=click.Choice(INPUT_FORMATS),
+            default="auto",
+            show_default=True,
+            help="Input format; 'auto' sniffs each input.",
+        ),
+        click.option(
+            "--triple-edges",
+            default="color=red",
+            show_default=True,
+            metavar="KEY=VALUE",
+            callback=_key_value,
+            help="Surface Evolver: the edge attribute that marks triple lines.",
+        ),
+        click.option(
+            "--chunk-size",
+            type=click.IntRange(min=1),
+            default=50_000,
+            show_default=True,
+            help="Grains per batch (and per Parquet row group).",
+        ),
+        click.option(
+            "-j",
+            "--jobs",
+            type=click.IntRange(min=1),
+            help="Threads for the compiled kernels (default: all cores).",
+        ),
+        click.option("-q", "--quiet", is_flag=True, help="No progress or counts on stderr."),
+    ]
+
+    def decorate(command):
+        for option in reversed(options):
+            command = option(command)
+        return command
+
+    return decorate
+
+
+def _set_jobs(jobs: int | None) -> None:
+    if jobs is not None:
+        import numba
+
+        numba.set_num_threads(min(jobs, numba.config.NUMBA_NUM_THREADS))
+
+
+def _progress(quiet: bool):
+    from grainclass.pipeline import Progress
+
+    return Progress(enabled=not quiet and sys.stderr.isatty())
+
+
 @cli.command("classify", epilog=EXIT_CODES)
 @click.argument("inputs", nargs=-1, required=True, metavar="INPUT...")
 @click.option(
@@ -52,39 +109,17 @@ def cli() -> None:
     metavar="FILE",
     help="Parquet file to write, one row per grain; '-' writes to standard output.",
 )
-@click.option(
-    "--format",
-    "input_format",
-    type=click.Choice(INPUT_FORMATS),
-    default="auto",
-    show_default=True,
-    help="Input format; 'auto' sniffs each input.",
-)
-@click.option(
-    "--triple-edges",
-    default="color=red",
-    show_default=True,
-    metavar="KEY=VALUE",
-    callback=_key_value,
-    help="Surface Evolver: the edge attribute that marks triple lines.",
-)
+@_input_options("--format", "--input-format")
 @click.option("--strict", is_flag=True, help="Exit 1 if any grain is not a simple polytope.")
-@click.option(
-    "--chunk-size",
-    type=click.IntRange(min=1),
-    default=50_000,
-    show_default=True,
-    help="Grains per batch (and per Parquet row group).",
-)
-@click.option("-q", "--quiet", is_flag=True, help="Print nothing on standard error but errors.")
 def classify_cmd(
     inputs: tuple[str, ...],
     output: str,
     input_format: str,
     triple_edges: tuple[str, str],
-    strict: bool,
     chunk_size: int,
+    jobs: int | None,
     quiet: bool,
+    strict: bool,
 ) -> None:
     """Classify every grain of INPUT... into a per-grain Parquet table.
 
@@ -92,17 +127,18 @@ def classify_cmd(
     datafiles (a folder stands for its *.fe files); '-' reads standard input, e.g.
     `plantri 12 | grainclass classify - -o all12.parquet`.
     """
-    from grainclass.classification import classify
     from grainclass.errors import GrainclassError
     from grainclass.parquet import GrainTableWriter
-    from grainclass.readers import read_dataset
+    from grainclass.pipeline import classified_tables
 
+    _set_jobs(jobs)
     fmt = None if input_format == "auto" else input_format
     counts: dict[str, int] = {}
+    progress = _progress(quiet)
     try:
         with GrainTableWriter(output) as writer:
-            for batch in read_dataset(list(inputs), fmt, chunk_size, triple_edges):
-                table = classify(batch)
+            tables = classified_tables(list(inputs), fmt, chunk_size, triple_edges)
+            for table in progress.wrap(tables):
                 for item in table.column("status").value_counts().to_pylist():
                     counts[item["values"]] = counts.get(item["values"], 0) + item["counts"]
                 writer.write(table)
@@ -125,7 +161,7 @@ def classify_cmd(
 
 
 @cli.command("summarize", epilog=EXIT_CODES)
-@click.argument("grains", nargs=-1, required=True, metavar="GRAINS.parquet...")
+@click.argument("grains", nargs=-1, required=True, metavar="GRAINS...")
 @click.option(
     "--table",
     "table_name",
@@ -146,20 +182,28 @@ def classify_cmd(
     help="Add a round-table row for grains with N faces (repeatable).",
 )
 @click.option("-o", "--output", default="-", metavar="FILE", help="Write here instead of stdout.")
+@_input_options("--input-format")
 def summarize_cmd(
     grains: tuple[str, ...],
     table_name: str | None,
     output_format: str | None,
     n_values: tuple[int, ...],
     output: str,
+    input_format: str,
+    triple_edges: tuple[str, str],
+    chunk_size: int,
+    jobs: int | None,
+    quiet: bool,
 ) -> None:
-    """Summarize per-grain tables into the paper's tables: classes, round, split.
+    """Summarize grains into the paper's tables: classes, round, split.
 
+    GRAINS are per-grain Parquet tables from `grainclass classify`, or any input classify reads,
+    classified on the fly without keeping per-grain rows: `plantri 14 | grainclass summarize -`.
     Above the tables, one line gives the grains by status, the mean number of faces and the
     percentage of faces that are triangles.
     """
     from grainclass.errors import GrainclassError
-    from grainclass.parquet import read_grain_tables
+    from grainclass.pipeline import grain_tables
     from grainclass.render import EXTENSIONS, render
     from grainclass.summary import COLUMNS, TABLES, summarize
 
@@ -169,8 +213,11 @@ def summarize_cmd(
         raise click.UsageError("parquet output holds one table: choose one with --table")
     if fmt == "parquet" and output == "-" and sys.stdout.isatty():
         raise click.UsageError("refusing to write Parquet to a terminal; use -o FILE")
+    _set_jobs(jobs)
+    in_fmt = None if input_format == "auto" else input_format
     try:
-        summary = summarize(read_grain_tables(list(grains), COLUMNS), n_values)
+        stream = grain_tables(list(grains), COLUMNS, in_fmt, chunk_size, triple_edges)
+        summary = summarize(_progress(quiet).wrap(stream), n_values)
     except GrainclassError as exc:
         raise click.ClickException(str(exc)) from None
     rendered = render(summary, tables, fmt)

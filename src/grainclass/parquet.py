@@ -8,6 +8,7 @@ from __future__ import annotations
 import os
 import sys
 import tempfile
+from collections.abc import Iterator
 from types import TracebackType
 from typing import BinaryIO
 
@@ -104,18 +105,18 @@ class GrainTableWriter:
                     os.unlink(self._tmp)
 
 
-def read_grain_tables(paths: list[str], columns: list[str] | None = None) -> pa.Table:
-    """Read and concatenate per-grain Parquet files (``-`` reads standard input)."""
-    from grainclass.errors import InputError
+def iter_grain_tables(path: str, columns: list[str]) -> Iterator[pa.Table]:
+    """The columns of a per-grain Parquet file, one row group at a time (``-``: standard input).
 
-    tables = []
-    for path in paths:
-        try:
-            if path == "-":
-                source = pa.BufferReader(sys.stdin.buffer.read())
-                tables.append(pq.read_table(source, columns=columns))
-            else:
-                tables.append(pq.read_table(path, columns=columns))
-        except (OSError, pa.ArrowInvalid) as exc:
-            raise InputError(path, f"not a grainclass Parquet table ({exc})") from None
-    return pa.concat_tables(tables)
+    Parquet keeps its index at the end, so standard input is read whole first.
+    """
+    from grainclass.errors import InputError
+    from grainclass.readers import stdin
+
+    try:
+        source = pa.BufferReader(stdin().read()) if path == "-" else path
+        parquet = pq.ParquetFile(source)
+        for group in range(parquet.num_row_groups):
+            yield parquet.read_row_group(group, columns=columns)
+    except (OSError, pa.ArrowInvalid, KeyError) as exc:
+        raise InputError(path, f"not a grainclass Parquet table ({exc})") from None

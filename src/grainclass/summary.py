@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from dataclasses import dataclass
 
 import numpy as np
@@ -10,17 +11,18 @@ import pyarrow as pa
 
 from grainclass import schema
 
-COLUMNS = [
+KEYS = [
     schema.STATUS,
     schema.N_FACES,
-    schema.N_TRIANGLES,
     schema.FAMILY,
     schema.CLASS,
     schema.ROUND_K,
     schema.SPLIT_K,
 ]
+COLUMNS = [*KEYS, schema.N_TRIANGLES]
 ROUND_LEVELS = range(7)
 TABLES = ("classes", "round", "split")
+COUNT, TRIANGLES = "count", "triangles"
 
 
 @dataclass(frozen=True)
@@ -37,79 +39,108 @@ class Summary:
         return {"classes": self.classes, "round": self.round, "split": self.split}[name]
 
 
-def _headline(grains: pd.DataFrame) -> dict[str, float | int]:
-    ok = grains[grains[schema.STATUS] == "ok"]
-    counts = grains[schema.STATUS].value_counts()
-    faces = int(ok[schema.N_FACES].sum())
+def tally(grains: pa.Table) -> pd.DataFrame:
+    """Grains counted by (status, n_faces, family, class, round_k, split_k), with their triangles.
+
+    Every table of the paper is a sum over these groups, so a stream of batches can be summarized
+    in bounded memory: tally each batch, then :func:`merge_tallies`.
+    """
+    grouped = grains.select(COLUMNS).group_by(KEYS, use_threads=False)
+    counts = grouped.aggregate([(schema.N_TRIANGLES, "sum"), ([], "count_all")]).to_pandas()
+    return counts.rename(columns={f"{schema.N_TRIANGLES}_sum": TRIANGLES, "count_all": COUNT})
+
+
+def merge_tallies(tallies: list[pd.DataFrame]) -> pd.DataFrame:
+    """One tally from several (same groups added up)."""
+    if not tallies:
+        return tally(pa.Table.from_pylist([], schema=schema.GRAIN_SCHEMA))
+    both = pd.concat(tallies, ignore_index=True)
+    return both.groupby(KEYS, dropna=False, as_index=False)[[COUNT, TRIANGLES]].sum(min_count=0)
+
+
+def _ok(counts: pd.DataFrame) -> pd.DataFrame:
+    return counts[counts[schema.STATUS] == "ok"]
+
+
+def _headline(counts: pd.DataFrame) -> dict[str, float | int]:
+    ok = _ok(counts)
+    by_status = counts.groupby(schema.STATUS)[COUNT].sum()
+    grains = int(ok[COUNT].sum())
+    faces = float((ok[schema.N_FACES] * ok[COUNT]).sum())
     return {
-        "grains": len(grains),
-        **{status: int(counts.get(status, 0)) for status in schema.STATUSES},
-        "mean_faces": float(ok[schema.N_FACES].mean()) if len(ok) else float("nan"),
+        "grains": int(counts[COUNT].sum()),
+        **{status: int(by_status.get(status, 0)) for status in schema.STATUSES},
+        "mean_faces": faces / grains if grains else float("nan"),
         "triangle_faces_percent": (
-            100.0 * float(ok[schema.N_TRIANGLES].sum()) / faces if faces else float("nan")
+            100.0 * float(ok[TRIANGLES].sum()) / faces if faces else float("nan")
         ),
     }
 
 
-def class_counts(grains: pd.DataFrame) -> pd.DataFrame:
+def class_counts(counts: pd.DataFrame) -> pd.DataFrame:
     """Counts of ok grains per number of faces and class: the paper's Tables II, V, R and E.
 
     Returns a frame with columns ``n, all, stacked, flag, ..., sc>=2`` and a final ``total`` row.
     """
-    ok = grains[grains[schema.STATUS] == "ok"]
-    table = pd.crosstab(ok[schema.N_FACES], ok[schema.CLASS])
+    ok = _ok(counts)
+    table = ok.pivot_table(
+        index=schema.N_FACES, columns=schema.CLASS, values=COUNT, aggfunc="sum", fill_value=0
+    )
     table = table.reindex(columns=list(schema.CLASSES), fill_value=0)
     table.insert(0, "all", table.sum(axis=1))
-    table.index = table.index.astype(str)
+    table.index = table.index.astype("int64").astype(str)
     table.loc["total"] = table.sum(axis=0)
     table.index.name = "n"
     table.columns.name = None
     return table.reset_index().astype({c: "int64" for c in ["all", *schema.CLASSES]})
 
 
-def round_percentages(grains: pd.DataFrame, n_values: tuple[int, ...] = ()) -> pd.DataFrame:
+def round_percentages(counts: pd.DataFrame, n_values: tuple[int, ...] = ()) -> pd.DataFrame:
     """Percentages of ok grains in round<=k (k = 0..6) and in the sc family: the paper's Table
     ``tbl:distribution``, for all grains and for each requested number of faces.
     """
-    ok = grains[grains[schema.STATUS] == "ok"]
+    ok = _ok(counts)
     groups = [("all", ok)] + [(f"n={n}", ok[ok[schema.N_FACES] == n]) for n in n_values]
     rows = []
     for label, part in groups:
-        total = len(part)
-        round_k = part[schema.ROUND_K]
+        total = int(part[COUNT].sum())
         row: dict[str, object] = {"grains": label, "count": total}
         for k in ROUND_LEVELS:
-            hits = int((round_k <= k).sum())
+            hits = int(part.loc[part[schema.ROUND_K] <= k, COUNT].sum())
             row["round0" if k == 0 else f"round<={k}"] = (
                 round(100.0 * hits / total, 2) if total else np.nan
             )
-        sc = int((part[schema.FAMILY] == "sc").sum())
+        sc = int(part.loc[part[schema.FAMILY] == "sc", COUNT].sum())
         row["sc"] = round(100.0 * sc / total, 2) if total else np.nan
         rows.append(row)
     return pd.DataFrame(rows)
 
 
-def split_counts(grains: pd.DataFrame) -> pd.DataFrame:
+def split_counts(counts: pd.DataFrame) -> pd.DataFrame:
     """Counts of ``flag`` grains by number of faces (rows) and split type k (columns).
 
     The split type is k:m with m = n - 4 - k. The paper's Table ``tbl:flag_few_vertices``.
     """
-    flag = grains[(grains[schema.STATUS] == "ok") & (grains[schema.CLASS] == "flag")]
-    table = pd.crosstab(flag[schema.N_FACES], flag[schema.SPLIT_K].astype("int64"))
+    flag = _ok(counts)[_ok(counts)[schema.CLASS] == "flag"]
+    table = flag.pivot_table(
+        index=schema.N_FACES, columns=schema.SPLIT_K, values=COUNT, aggfunc="sum", fill_value=0
+    )
     if len(table.columns):
         table = table.reindex(columns=range(int(table.columns.max()) + 1), fill_value=0)
+    table.index = table.index.astype("int64")
     table.index.name = "n"
-    table.columns = [str(k) for k in table.columns]
+    table.columns = [str(int(k)) for k in table.columns]
     return table.reset_index().astype("int64")
 
 
-def summarize(grains: pa.Table | pd.DataFrame, n_values: tuple[int, ...] = ()) -> Summary:
+def summarize(grains: pa.Table | Iterable[pa.Table], n_values: tuple[int, ...] = ()) -> Summary:
     """Summarize classified grains into the paper's tables.
 
     Parameters
     ----------
-    grains : pyarrow.Table or pandas.DataFrame
-        Rows as written by ``grainclass classify`` (at least the columns in ``COLUMNS``).
+    grains : pyarrow.Table or iterable of pyarrow.Table
+        Rows as written by ``grainclass classify`` (at least the columns in ``COLUMNS``); an
+        iterable is consumed one table at a time, so a stream of batches needs little memory.
     n_values : tuple of int
         Numbers of faces for which the round table gets a row of its own.
 
@@ -125,11 +156,11 @@ def summarize(grains: pa.Table | pd.DataFrame, n_values: tuple[int, ...] = ()) -
     >>> s.classes[["n", "all", "flag"]].values.tolist()
     [['6', 1, 1], ['total', 1, 1]]
     """
-    if isinstance(grains, pa.Table):
-        grains = grains.select(COLUMNS).to_pandas()
+    tables = [grains] if isinstance(grains, pa.Table) else grains
+    counts = merge_tallies([tally(table) for table in tables])
     return Summary(
-        headline=_headline(grains),
-        classes=class_counts(grains),
-        round=round_percentages(grains, tuple(n_values)),
-        split=split_counts(grains),
+        headline=_headline(counts),
+        classes=class_counts(counts),
+        round=round_percentages(counts, tuple(n_values)),
+        split=split_counts(counts),
     )

@@ -72,12 +72,28 @@ def _expand(paths: Sequence[str]) -> list[str]:
     return expanded
 
 
+_wrapped_stdin: dict[int, BinaryIO] = {}
+
+
+def stdin() -> BinaryIO:
+    """Standard input as a binary stream that can ``peek()`` (for sniffing).
+
+    A replaced stdin (an embedding program, a test) may lack peek(); it is wrapped once, so that
+    every reader sees the bytes another one peeked at.
+    """
+    stream = sys.stdin.buffer
+    if hasattr(stream, "peek"):
+        return stream
+    if id(stream) not in _wrapped_stdin:
+        _wrapped_stdin.clear()
+        _wrapped_stdin[id(stream)] = io.BufferedReader(stream)
+    return _wrapped_stdin[id(stream)]
+
+
 @contextmanager
 def _open(path: str) -> Iterator[BinaryIO]:
     if path == "-":
-        stream = sys.stdin.buffer
-        # Sniffing needs peek(); a replaced stdin (an embedding program, a test) may lack it.
-        yield stream if hasattr(stream, "peek") else io.BufferedReader(stream)
+        yield stdin()
         return
     try:
         stream = open(path, "rb")  # noqa: SIM115 (closed below, after the generator is done)

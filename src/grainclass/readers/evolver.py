@@ -14,11 +14,16 @@ unless the body gives its ``volume``.
 
 from __future__ import annotations
 
+import contextlib
+import functools
 import itertools
+import os
 import re
 from collections import defaultdict
 from collections.abc import Iterable, Iterator
+from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass, field
+from multiprocessing import get_context
 
 import numpy as np
 
@@ -28,6 +33,7 @@ from grainclass.errors import InputError
 SECTIONS = {"vertices", "edges", "faces", "facets", "bodies"}
 WRAPS = {"*": 0, "+": 1, "-": -1}
 DEFAULT_TRIPLE_EDGES = ("color", "red")
+PARALLEL_FILES = 200  # from this many files on, a process pool reads them
 _NUMBER = re.compile(r"^[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$")
 
 
@@ -35,22 +41,35 @@ _NUMBER = re.compile(r"^[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$")
 class _Datafile:
     """The parts of a datafile that matter for grains."""
 
-    periods: np.ndarray | None = None
-    coords: dict[int, np.ndarray] = field(default_factory=dict)
-    # edge id -> (tail, head, wrap vector, is triple)
-    edges: dict[int, tuple[int, int, np.ndarray, bool]] = field(default_factory=dict)
+    periods: list[list[float]] | None = None
+    coords: dict[int, tuple[float, float, float]] = field(default_factory=dict)
+    # edge id -> (tail, head, head's periodic shift or None, is triple)
+    edges: dict[int, tuple[int, int, tuple[float, float, float] | None, bool]] = field(
+        default_factory=dict
+    )
     facets: dict[int, list[int]] = field(default_factory=dict)
     # body id -> (line, signed facet ids, volume or None)
     bodies: dict[int, tuple[int, list[int], float | None]] = field(default_factory=dict)
 
 
 def _logical_lines(text: str) -> Iterator[tuple[int, list[str]]]:
-    """(line number, tokens) with comments removed and ``\\`` continuations joined."""
-    text = re.sub(r"/\*.*?\*/", lambda m: "\n" * m.group().count("\n"), text, flags=re.S)
+    """(line number, tokens) with comments and ``#`` directives removed, ``\\`` lines joined."""
+    if "/*" in text:
+        text = re.sub(r"/\*.*?\*/", lambda m: "\n" * m.group().count("\n"), text, flags=re.S)
+    if "//" not in text and "#" not in text and "\\" not in text:  # the common, quick case
+        for number, line in enumerate(text.splitlines(), 1):
+            tokens = line.split()
+            if tokens:
+                yield number, tokens
+        return
     pending: list[str] = []
     start = 0
     for number, line in enumerate(text.splitlines(), 1):
-        line = line.split("//", 1)[0].split("#", 1)[0].rstrip()
+        if "//" in line:
+            line = line.split("//", 1)[0]
+        if line.startswith("#"):
+            line = ""
+        line = line.rstrip()
         if not pending:
             start = number
         if line.endswith("\\"):
@@ -62,28 +81,24 @@ def _logical_lines(text: str) -> Iterator[tuple[int, list[str]]]:
             yield start, tokens
 
 
-def _has_attribute(tokens: list[str], key: str, value: str) -> bool:
-    return any(
-        t.lower() == key and i + 1 < len(tokens) and tokens[i + 1].lower() == value
-        for i, t in enumerate(tokens)
-    )
-
-
 def _parse(text: str, source: str, triple_edges: tuple[str, str]) -> _Datafile:
     data = _Datafile()
     section = None
     lines = list(_logical_lines(text))
-    key, value = (s.lower() for s in triple_edges)
+    marker = " {} {} ".format(*(s.lower() for s in triple_edges))  # e.g. " color red "
     i = 0
     while i < len(lines):
         number, tokens = lines[i]
         i += 1
+        if section is not None and tokens[0].isdigit():
+            _parse_entry(data, section, number, tokens, marker, source)
+            continue
         word = tokens[0].lower()
         if word == "periods":
             rows = [t for _, row in lines[i : i + 3] for t in row]
             if len(rows) < 9 or not all(_NUMBER.match(t) for t in rows[:9]):
                 raise InputError(source, "periods needs three rows of three numbers", number)
-            data.periods = np.array(rows[:9], float).reshape(3, 3)
+            data.periods = [[float(t) for t in rows[k : k + 3]] for k in (0, 3, 6)]
             i += 3
             continue
         if word in SECTIONS:
@@ -91,38 +106,58 @@ def _parse(text: str, source: str, triple_edges: tuple[str, str]) -> _Datafile:
             continue
         if word == "read":
             break
-        if section is None or not tokens[0].isdigit():
-            continue
-        try:
-            ident = int(tokens[0])
-            if section == "vertices":
-                data.coords[ident] = np.array(tokens[1:4], float)
-            elif section == "edges":
-                tail, head = int(tokens[1]), int(tokens[2])
-                wrap = np.zeros(3)
-                if data.periods is not None and len(tokens) >= 6 and tokens[3] in WRAPS:
-                    wrap = np.array([WRAPS[t] for t in tokens[3:6]], float)
-                data.edges[ident] = (tail, head, wrap, _has_attribute(tokens, key, value))
-            elif section == "facets":
-                data.facets[ident] = _leading_integers(tokens[1:])
-            else:
-                volume = None
-                lowered = [t.lower() for t in tokens]
-                if "volume" in lowered:
-                    volume = float(tokens[lowered.index("volume") + 1])
-                data.bodies[ident] = (number, _leading_integers(tokens[1:]), volume)
-        except (ValueError, IndexError, KeyError):
-            raise InputError(source, f"cannot read this {section[:-1]} line", number) from None
     return data
 
 
+def _parse_entry(
+    data: _Datafile, section: str, number: int, tokens: list[str], marker: str, source: str
+) -> None:
+    """One numbered line of a section."""
+    try:
+        ident = int(tokens[0])
+        if section == "vertices":
+            data.coords[ident] = (float(tokens[1]), float(tokens[2]), float(tokens[3]))
+        elif section == "edges":
+            tail, head = int(tokens[1]), int(tokens[2])
+            shift = None
+            if data.periods is not None and len(tokens) >= 6 and tokens[3] in WRAPS:
+                shift = _shift(data.periods, tokens[3:6])
+            triple = len(tokens) > 4 and marker in f" {' '.join(tokens[3:]).lower()} "
+            data.edges[ident] = (tail, head, shift, triple)
+        elif section == "facets":
+            data.facets[ident] = _leading_integers(tokens[1:])
+        else:
+            volume = None
+            lowered = [t.lower() for t in tokens]
+            if "volume" in lowered:
+                volume = float(tokens[lowered.index("volume") + 1])
+            data.bodies[ident] = (number, _leading_integers(tokens[1:]), volume)
+    except (ValueError, IndexError, KeyError):
+        raise InputError(source, f"cannot read this {section[:-1]} line", number) from None
+
+
 def _leading_integers(tokens: list[str]) -> list[int]:
-    out = []
-    for t in tokens:
-        if not re.fullmatch(r"[-+]?\d+", t):
-            break
-        out.append(int(t))
-    return out
+    try:
+        return [int(t) for t in tokens]
+    except ValueError:  # attributes follow the ids
+        out = []
+        for t in tokens:
+            if not t.lstrip("+-").isdigit():
+                break
+            out.append(int(t))
+        return out
+
+
+def _shift(periods: list[list[float]], marks: list[str]) -> tuple[float, float, float] | None:
+    """Offset of an edge's head from its stored position: wrap marks times period vectors."""
+    wraps = [WRAPS[m] for m in marks]
+    if not any(wraps):
+        return None
+    return (
+        sum(w * p[0] for w, p in zip(wraps, periods, strict=True)),
+        sum(w * p[1] for w, p in zip(wraps, periods, strict=True)),
+        sum(w * p[2] for w, p in zip(wraps, periods, strict=True)),
+    )
 
 
 class GrainError(ValueError):
@@ -140,9 +175,17 @@ def _oriented_facet(data: _Datafile, signed: int) -> list[tuple[int, int, int]]:
     return darts
 
 
-def _grain(data: _Datafile, body: int, facet_bodies: dict[int, list[int]]) -> tuple:
-    """(neighbour lists, volume, area) of one body."""
+def _grain(data: _Datafile, body: int, facet_bodies: dict[int, list[int]], marked: bool) -> tuple:
+    """(neighbour lists, volume, area) of one body; ``marked``: the file marks triple edges."""
     _, signed_facets, given_volume = data.bodies[body]
+    if len({abs(f) for f in signed_facets}) < len(signed_facets):
+        twice = next(
+            abs(f) for f in signed_facets if signed_facets.count(f) + signed_facets.count(-f) > 1
+        )
+        raise GrainError(
+            f"body {body} uses facet {twice} twice (it touches its own periodic image): "
+            "enlarge the periodic box so that every facet lies between two bodies"
+        )
     facets = [_oriented_facet(data, f) for f in signed_facets]
     on_edge: dict[int, list[int]] = defaultdict(list)
     for k, darts in enumerate(facets):
@@ -162,9 +205,18 @@ def _grain(data: _Datafile, body: int, facet_bodies: dict[int, list[int]]) -> tu
             k = parent[k]
         return k
 
+    row = _vertex_rows(facets)
+    polygons = [[row[t] for t, _, _ in darts] for darts in facets]
+    position = _positions(data, facets, row)
+    normal = None if marked else _unit_normals(position, polygons)
     for e, (a, b) in on_edge.items():
-        if not data.edges[e][3] and other[a] == other[b]:
-            parent[find(a)] = find(b)
+        if data.edges[e][3] or other[a] != other[b]:
+            continue
+        # Without marked triple edges, facets on the outside of a foam (shared with no other
+        # body) make one face only where they are coplanar: the sample boundary cuts grains.
+        if normal is not None and not other[a] and float(normal[a] @ normal[b]) < 1 - 1e-9:
+            continue
+        parent[find(a)] = find(b)
     roots = sorted({find(k) for k in range(len(facets))})
     face_of_root = {r: f for f, r in enumerate(roots)}
     face = [face_of_root[find(k)] for k in range(len(facets))]
@@ -186,7 +238,7 @@ def _grain(data: _Datafile, body: int, facet_bodies: dict[int, list[int]]) -> tu
                 a, b = on_edge[e]
                 across[(face[k], e)] = face[b] if a == k else face[a]
     neighbours = [_walk_boundary(f, leaving[f], across, degree) for f in range(len(roots))]
-    volume, area = _measure(data, facets)
+    volume, area = _measure(position, polygons)
     return neighbours, (given_volume if given_volume is not None else abs(volume)), area
 
 
@@ -214,32 +266,64 @@ def _walk_boundary(f, leaving, across, degree) -> list[int]:
     return neighbours
 
 
-def _measure(data: _Datafile, facets: list[list[tuple[int, int, int]]]) -> tuple[float, float]:
-    """Signed volume and area of a closed body, in a frame unwrapped from one of its vertices."""
-    step: dict[int, list[tuple[int, np.ndarray]]] = defaultdict(list)
+def _vertex_rows(facets: list[list[tuple[int, int, int]]]) -> dict[int, int]:
+    """Row of each vertex of a body in the unwrapped position array (see :func:`_positions`)."""
+    return {tail: k for k, tail in enumerate(dict.fromkeys(t for ds in facets for t, _, _ in ds))}
+
+
+def _positions(
+    data: _Datafile, facets: list[list[tuple[int, int, int]]], row: dict[int, int]
+) -> np.ndarray:
+    """Vertex positions of a body in one frame, unwrapped across periodic boundaries.
+
+    Breadth-first over the body's edges, each step adding the edge's vector (head plus its
+    periodic shift, minus tail). Plain floats: a numpy call per vertex would cost more.
+    """
+    if not any(data.edges[e][2] for darts in facets for _, _, e in darts):
+        return np.array([data.coords[v] for v in row])  # nothing wraps: stored positions
+    step: dict[int, list[tuple[int, float, float, float]]] = defaultdict(list)
     for darts in facets:
         for _, _, e in darts:
-            t, h, wrap, _ = data.edges[e]
-            shift = wrap @ data.periods if data.periods is not None else 0.0
-            delta = data.coords[h] + shift - data.coords[t]
-            step[t].append((h, delta))
-            step[h].append((t, -delta))
+            t, h, shift, _ = data.edges[e]
+            (tx, ty, tz), (hx, hy, hz) = data.coords[t], data.coords[h]
+            if shift is not None:
+                hx, hy, hz = hx + shift[0], hy + shift[1], hz + shift[2]
+            dx, dy, dz = hx - tx, hy - ty, hz - tz
+            step[t].append((h, dx, dy, dz))
+            step[h].append((t, -dx, -dy, -dz))
     first = facets[0][0][0]
-    position = {first: data.coords[first]}
+    placed = {first: data.coords[first]}
     queue = [first]
     while queue:
         v = queue.pop()
-        for w, delta in step[v]:
-            if w not in position:
-                position[w] = position[v] + delta
+        x, y, z = placed[v]
+        for w, dx, dy, dz in step[v]:
+            if w not in placed:
+                placed[w] = (x + dx, y + dy, z + dz)
                 queue.append(w)
-    volume = area = 0.0
-    for darts in facets:
-        corners = [position[tail] for tail, _, _ in darts]
-        for b, c in itertools.pairwise(corners[1:]):
-            cross = np.cross(b - corners[0], c - corners[0])
-            area += 0.5 * float(np.linalg.norm(cross))
-            volume += float(np.dot(corners[0], np.cross(b, c))) / 6.0
+    position = np.empty((len(row), 3))
+    for v, k in row.items():
+        position[k] = placed[v]
+    return position
+
+
+def _unit_normals(position: np.ndarray, polygons: list[list[int]]) -> np.ndarray:
+    """Newell's normal of every polygon (rows of ``position``), of length 1 (0 if degenerate)."""
+    starts = np.array([k for k, p in enumerate(polygons) for _ in p])
+    a = np.array([v for p in polygons for v in p])
+    b = np.array([v for p in polygons for v in p[1:] + p[:1]])
+    total = np.zeros((len(polygons), 3))
+    np.add.at(total, starts, np.cross(position[a], position[b]))
+    length = np.linalg.norm(total, axis=1, keepdims=True)
+    return np.divide(total, length, out=np.zeros_like(total), where=length > 0)
+
+
+def _measure(position: np.ndarray, polygons: list[list[int]]) -> tuple[float, float]:
+    """Signed volume (divergence theorem) and area of a closed body, polygons fanned."""
+    fans = np.array([(p[0], b, c) for p in polygons for b, c in itertools.pairwise(p[1:])])
+    a, b, c = position[fans[:, 0]], position[fans[:, 1]], position[fans[:, 2]]
+    area = 0.5 * float(np.linalg.norm(np.cross(b - a, c - a), axis=1).sum())
+    volume = float(np.einsum("ij,ij->i", a, np.cross(b, c)).sum()) / 6.0
     return volume, area
 
 
@@ -264,35 +348,53 @@ def read_evolver(
     GrainBatch
         One grain per body: the file's stem when the file has one body, else the body id.
     """
+    paths = list(paths)
+    read = functools.partial(_read_file, triple_edges=triple_edges)
     grains: list[_Grain] = []
-    for path in paths:
-        stem = path.rsplit("/", 1)[-1].removesuffix(".fe")
-        try:
-            with open(path, encoding="utf-8", errors="replace") as handle:
-                data = _parse(handle.read(), path, triple_edges)
-        except OSError as exc:
-            raise InputError(path, exc.strerror or str(exc)) from None
-        except InputError as exc:  # a malformed file is one bad grain, not a failed run
-            grains.append(_Grain(stem, path, exc.line or 1, error=exc.message))
-            data = _Datafile()
-        facet_bodies: dict[int, list[int]] = defaultdict(list)
-        for body, (_, signed, _) in data.bodies.items():
-            for f in signed:
-                facet_bodies[abs(f)].append(body)
-        for body, (line, _, _) in data.bodies.items():
-            grain_id = stem if len(data.bodies) == 1 else str(body)
-            try:
-                lists, volume, area = _grain(data, body, facet_bodies)
-                grains.append(_Grain(grain_id, path, line, lists, volume, area))
-            except GrainError as exc:
-                grains.append(_Grain(grain_id, path, line, error=str(exc)))
-            except KeyError as exc:
-                grains.append(_Grain(grain_id, path, line, error=f"body {body}: unknown id {exc}"))
-        if len(grains) >= chunk_size:
-            yield _batch(grains)
-            grains = []
+    with contextlib.ExitStack() as stack:
+        per_file: Iterable[list[_Grain]] = map(read, paths)
+        if len(paths) >= PARALLEL_FILES and (os.cpu_count() or 1) > 1:
+            # Parsing is pure Python: a folder of dumps is read by one process per core. Spawned,
+            # not forked: the parent may be running compiled kernels in threads.
+            pool = stack.enter_context(
+                ProcessPoolExecutor(os.cpu_count(), mp_context=get_context("spawn"))
+            )
+            per_file = pool.map(read, paths, chunksize=16)
+        for file_grains in per_file:
+            grains += file_grains
+            if len(grains) >= chunk_size:
+                yield _batch(grains)
+                grains = []
     if grains:
         yield _batch(grains)
+
+
+def _read_file(path: str, triple_edges: tuple[str, str]) -> list[_Grain]:
+    """The grains of one datafile (a malformed file is one bad grain, not a failed run)."""
+    stem = path.rsplit("/", 1)[-1].removesuffix(".fe")
+    try:
+        with open(path, encoding="utf-8", errors="replace") as handle:
+            data = _parse(handle.read(), path, triple_edges)
+    except OSError as exc:
+        raise InputError(path, exc.strerror or str(exc)) from None
+    except InputError as exc:
+        return [_Grain(stem, path, exc.line or 1, error=exc.message)]
+    facet_bodies: dict[int, list[int]] = defaultdict(list)
+    for body, (_, signed, _) in data.bodies.items():
+        for f in signed:
+            facet_bodies[abs(f)].append(body)
+    marked = any(edge[3] for edge in data.edges.values())
+    grains = []
+    for body, (line, _, _) in data.bodies.items():
+        grain_id = stem if len(data.bodies) == 1 else str(body)
+        try:
+            lists, volume, area = _grain(data, body, facet_bodies, marked)
+            grains.append(_Grain(grain_id, path, line, lists, volume, area))
+        except GrainError as exc:
+            grains.append(_Grain(grain_id, path, line, error=str(exc)))
+        except KeyError as exc:
+            grains.append(_Grain(grain_id, path, line, error=f"body {body}: unknown id {exc}"))
+    return grains
 
 
 @dataclass

@@ -1,0 +1,125 @@
+"""From inputs to per-grain tables, overlapping reading with classification.
+
+Reading (planar_code parsing, text splitting) runs in a background thread while the main thread
+classifies: the compiled kernels release the GIL, so the two overlap on separate cores.
+"""
+
+from __future__ import annotations
+
+import queue
+import sys
+import threading
+import time
+from collections.abc import Iterable, Iterator, Sequence
+from typing import TypeVar
+
+import pyarrow as pa
+
+from grainclass.classification import classify
+from grainclass.readers import DEFAULT_CHUNK_SIZE, read_dataset, stdin
+from grainclass.readers.evolver import DEFAULT_TRIPLE_EDGES
+
+T = TypeVar("T")
+_DONE = object()
+
+
+def prefetch(items: Iterable[T], depth: int = 2) -> Iterator[T]:
+    """Yield ``items`` in order, computing up to ``depth`` ahead in a background thread.
+
+    An exception in the producer is raised in the consumer; a consumer that stops early stops
+    the producer at its next item.
+    """
+    slots: queue.Queue = queue.Queue(maxsize=depth)
+    stop = threading.Event()
+
+    def produce() -> None:
+        try:
+            for item in items:
+                while not stop.is_set():
+                    try:
+                        slots.put(item, timeout=0.1)
+                        break
+                    except queue.Full:
+                        continue
+                if stop.is_set():
+                    return
+            slots.put(_DONE)
+        except BaseException as exc:  # handed to the consumer, which raises it
+            slots.put(exc)
+
+    worker = threading.Thread(target=produce, name="grainclass-reader", daemon=True)
+    worker.start()
+    try:
+        while True:
+            item = slots.get()
+            if item is _DONE:
+                return
+            if isinstance(item, BaseException):
+                raise item
+            yield item
+    finally:
+        stop.set()
+
+
+def classified_tables(
+    paths: Sequence[str],
+    format: str | None = None,
+    chunk_size: int = DEFAULT_CHUNK_SIZE,
+    triple_edges: tuple[str, str] = DEFAULT_TRIPLE_EDGES,
+) -> Iterator[pa.Table]:
+    """Per-grain tables for every batch of the inputs, in input order."""
+    for batch in prefetch(read_dataset(paths, format, chunk_size, triple_edges)):
+        yield classify(batch)
+
+
+def is_parquet(path: str) -> bool:
+    """True for a Parquet file (or standard input holding one)."""
+    if path == "-":
+        return stdin().peek(4)[:4] == b"PAR1"
+    try:
+        with open(path, "rb") as handle:
+            return handle.read(4) == b"PAR1"
+    except OSError:
+        return False  # let the reader report it
+
+
+def grain_tables(
+    paths: Sequence[str],
+    columns: list[str],
+    format: str | None = None,
+    chunk_size: int = DEFAULT_CHUNK_SIZE,
+    triple_edges: tuple[str, str] = DEFAULT_TRIPLE_EDGES,
+) -> Iterator[pa.Table]:
+    """Per-grain tables from classified Parquet files or, for any other input, classified now."""
+    from grainclass.parquet import iter_grain_tables
+
+    for path in paths:
+        if is_parquet(path):
+            yield from iter_grain_tables(path, columns)
+        else:
+            for table in classified_tables([path], format, chunk_size, triple_edges):
+                yield table.select(columns)
+
+
+class Progress:
+    """Grains done and grains per second on standard error, redrawn in place."""
+
+    def __init__(self, enabled: bool) -> None:
+        self.enabled = enabled
+        self.grains = 0
+        self.start = time.perf_counter()
+        self._drawn = 0.0
+
+    def wrap(self, tables: Iterable[pa.Table]) -> Iterator[pa.Table]:
+        for table in tables:
+            self.grains += len(table)
+            now = time.perf_counter()
+            if self.enabled and now - self._drawn > 0.2:
+                rate = self.grains / max(now - self.start, 1e-9)
+                sys.stderr.write(f"\r{self.grains:,} grains, {rate:,.0f} grains/s ")
+                sys.stderr.flush()
+                self._drawn = now
+            yield table
+        if self.enabled and self._drawn:
+            sys.stderr.write("\r\033[K")
+            sys.stderr.flush()

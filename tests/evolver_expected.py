@@ -1,0 +1,268 @@
+"""Expected values for the Surface Evolver datafile reader.
+
+``FIXTURES``: the grain-growth grain files in /work/shared/fixtures/grain3d/ (one body each,
+triangulated faces, ``color red`` triple-line edges). ``FOAMS``: the hand-made files in
+tests/data/evolver/.
+
+Plain data, no grainclass imports. Derived independently by a throwaway from-scratch Python script
+(numpy + networkx, NOT grainclass code) working directly on the datafiles:
+
+* Grain faces = connected sets of facets, joined across the edges that are not ``color red``.
+* Corner = vertex where >= 3 red edges meet; triple line = maximal chain of red edges between
+  corners; the number of sides of a face = number of triple lines on its boundary.
+* Dual triangulation: one vertex per face, one edge per triple line, one triangle per corner.
+  Reverse truncation = delete a degree-3 vertex (its 3 triangles become one), repeatedly, stopping
+  at the tetrahedron (stacked). Otherwise fundamental: flag if it has no empty triangle (3-cycle
+  that is not a face), sc otherwise. Truncation trees: a vertex stacked into a triangle created by
+  an earlier stacking is a child of the latest such vertex; with 2 truncations, two trees ->
+  flag+1+1, one tree -> flag+2. Class, truncation count and tree shapes were the same for 20
+  random removal orders.
+* Cross-checks for every grain: V - E + F = 2 (corners - triple lines + faces); every corner has
+  exactly 3 red edges and 3 faces; one fan centre (vertex without red edges) per face; no red edge
+  inside a face and no closed triple line without corners; for the ok grains the dual is a
+  triangulated sphere (every dual edge in exactly two triangles); a second, graph-only reduction
+  (networkx) gave the same fundamental size, truncation count and empty-triangle count.
+* Geometry: vertex positions unwrapped per body by breadth-first search over its edges (head
+  shifted by wrap * period relative to the tail); the wrap marks are consistent on every edge and
+  the unwrapped edges are all shorter than 0.13. Volume by the divergence theorem over the
+  body-signed facets (sum of det(a, b, c) / 6), recomputed about a shifted origin and by a second
+  per-facet placement: same value to 1e-12 relative. Area = sum of triangle areas. Rounded to 9
+  significant digits. In ALL ten fixtures the body facet signs as given already yield a POSITIVE
+  volume (outward normals): no flipping was needed. Every fixture body is closed (each edge in
+  exactly two of its facets, in opposite directions) and uses every facet of its file once.
+
+Keys: ``n_faces``; ``p_vector`` (counts of faces with 3, 4, 5, ... sides, up to the largest; None
+for degenerate grains); ``status`` ("ok" / "degenerate"); ``class`` and ``truncations`` (None for
+degenerate grains); ``n_two_gons`` (degenerate grains only); ``volume``; ``area``; and the extra
+cross-check counts ``n_corners`` and ``n_triple_lines``.
+"""
+
+FIXTURES = {
+    # 21000-00000006.fe: 394 facets, 199 vertices, 591 edges; 126 edges carry wrap marks (in y and
+    # z). 16 faces, 28 corners (3 red edges and 3 faces each), 42 triple lines: 28 - 42 + 16 = 2.
+    # Sides per face: 3, 4, 4, 4, 5, 5, 5, 5, 5, 5, 5, 6, 6, 7, 7, 8. 1 reverse truncation(s) reach
+    # a fundamental grain with 15 faces and no empty triangle; 1 truncation tree(s) (): flag+1.
+    # Volume positive with the file's body facet signs.
+    "21000-00000006.fe": {
+        "n_faces": 16,
+        "p_vector": (1, 3, 7, 2, 2, 1),
+        "status": "ok",
+        "class": "flag+1",
+        "truncations": 1,
+        "volume": 0.00533810358,
+        "area": 0.170809902,
+        "n_corners": 28,
+        "n_triple_lines": 42,
+    },
+    # 21000-00000007.fe: 284 facets, 144 vertices, 426 edges; no wrap marks. 13 faces, 22 corners (3
+    # red edges and 3 faces each), 33 triple lines: 22 - 33 + 13 = 2. Sides per face: 4, 4, 4, 5, 5,
+    # 5, 5, 5, 5, 5, 6, 6, 7. No triangular face: fundamental; no empty triangle: flag. Volume
+    # positive with the file's body facet signs.
+    "21000-00000007.fe": {
+        "n_faces": 13,
+        "p_vector": (0, 3, 7, 2, 1),
+        "status": "ok",
+        "class": "flag",
+        "truncations": 0,
+        "volume": 0.00258432491,
+        "area": 0.101248303,
+        "n_corners": 22,
+        "n_triple_lines": 33,
+    },
+    # 21000-00000014.fe: 418 facets, 211 vertices, 627 edges; no wrap marks. 15 faces, 26 corners (3
+    # red edges and 3 faces each), 39 triple lines: 26 - 39 + 15 = 2. Sides per face: 4, 4, 4, 4, 4,
+    # 4, 5, 5, 5, 6, 6, 6, 7, 7, 7. No triangular face: fundamental; no empty triangle: flag. Volume
+    # positive with the file's body facet signs.
+    "21000-00000014.fe": {
+        "n_faces": 15,
+        "p_vector": (0, 6, 3, 3, 3),
+        "status": "ok",
+        "class": "flag",
+        "truncations": 0,
+        "volume": 0.00621144777,
+        "area": 0.184556932,
+        "n_corners": 26,
+        "n_triple_lines": 39,
+    },
+    # 21000-00000019.fe: 350 facets, 177 vertices, 525 edges; no wrap marks. 15 faces, 26 corners (3
+    # red edges and 3 faces each), 39 triple lines: 26 - 39 + 15 = 2. Sides per face: 4, 4, 4, 4, 5,
+    # 5, 5, 5, 5, 5, 6, 6, 6, 7, 7. No triangular face: fundamental; no empty triangle: flag. Volume
+    # positive with the file's body facet signs.
+    "21000-00000019.fe": {
+        "n_faces": 15,
+        "p_vector": (0, 4, 6, 3, 2),
+        "status": "ok",
+        "class": "flag",
+        "truncations": 0,
+        "volume": 0.00400544029,
+        "area": 0.141655655,
+        "n_corners": 26,
+        "n_triple_lines": 39,
+    },
+    # 21000-00000023.fe: 164 facets, 84 vertices, 246 edges; 37 edges carry wrap marks (in x and z).
+    # 9 faces, 14 corners (3 red edges and 3 faces each), 21 triple lines: 14 - 21 + 9 = 2. Sides
+    # per face: 3, 3, 4, 4, 4, 5, 5, 7, 7. 3 reverse truncation(s) reach a fundamental grain with 6
+    # faces and no empty triangle; 2 truncation tree(s) ()+(()): flag>=3. Volume positive with the
+    # file's body facet signs.
+    "21000-00000023.fe": {
+        "n_faces": 9,
+        "p_vector": (2, 3, 2, 0, 2),
+        "status": "ok",
+        "class": "flag>=3",
+        "truncations": 3,
+        "volume": 0.000254032495,
+        "area": 0.0254221108,
+        "n_corners": 14,
+        "n_triple_lines": 21,
+    },
+    # 21000-00000025.fe: 224 facets, 114 vertices, 336 edges; no wrap marks. 10 faces, 16 corners (3
+    # red edges and 3 faces each), 24 triple lines: 16 - 24 + 10 = 2. Sides per face: 2, 3, 3, 3, 3,
+    # 4, 7, 7, 8, 8. 1 face with 2 sides (two faces share two triple lines): degenerate. Volume
+    # positive with the file's body facet signs.
+    "21000-00000025.fe": {
+        "n_faces": 10,
+        "p_vector": None,
+        "status": "degenerate",
+        "class": None,
+        "truncations": None,
+        "n_two_gons": 1,
+        "volume": 0.000934736884,
+        "area": 0.0572450072,
+        "n_corners": 16,
+        "n_triple_lines": 24,
+    },
+    # 21000-00000028.fe: 392 facets, 198 vertices, 588 edges; no wrap marks. 15 faces, 26 corners (3
+    # red edges and 3 faces each), 39 triple lines: 26 - 39 + 15 = 2. Sides per face: 4, 4, 4, 5, 5,
+    # 5, 5, 5, 5, 6, 6, 6, 6, 6, 6. No triangular face: fundamental; no empty triangle: flag. Volume
+    # positive with the file's body facet signs.
+    "21000-00000028.fe": {
+        "n_faces": 15,
+        "p_vector": (0, 3, 6, 6),
+        "status": "ok",
+        "class": "flag",
+        "truncations": 0,
+        "volume": 0.00505632362,
+        "area": 0.159303778,
+        "n_corners": 26,
+        "n_triple_lines": 39,
+    },
+    # 21000-00000029.fe: 240 facets, 122 vertices, 360 edges; no wrap marks. 10 faces, 16 corners (3
+    # red edges and 3 faces each), 24 triple lines: 16 - 24 + 10 = 2. Sides per face: 4, 4, 4, 4, 5,
+    # 5, 5, 5, 6, 6. No triangular face: fundamental; no empty triangle: flag. Volume positive with
+    # the file's body facet signs.
+    "21000-00000029.fe": {
+        "n_faces": 10,
+        "p_vector": (0, 4, 4, 2),
+        "status": "ok",
+        "class": "flag",
+        "truncations": 0,
+        "volume": 0.00126280492,
+        "area": 0.0654182288,
+        "n_corners": 16,
+        "n_triple_lines": 24,
+    },
+    # 21000-00000030.fe: 460 facets, 232 vertices, 690 edges; 98 edges carry wrap marks (in y). 17
+    # faces, 30 corners (3 red edges and 3 faces each), 45 triple lines: 30 - 45 + 17 = 2. Sides per
+    # face: 4, 4, 4, 4, 5, 5, 5, 5, 5, 5, 6, 6, 6, 6, 6, 6, 8. No triangular face: fundamental; no
+    # empty triangle: flag. Volume positive with the file's body facet signs.
+    "21000-00000030.fe": {
+        "n_faces": 17,
+        "p_vector": (0, 4, 6, 6, 0, 1),
+        "status": "ok",
+        "class": "flag",
+        "truncations": 0,
+        "volume": 0.00951004855,
+        "area": 0.243238834,
+        "n_corners": 30,
+        "n_triple_lines": 45,
+    },
+    # 21000-00000053.fe: 86 facets, 45 vertices, 129 edges; 8 edges carry wrap marks (in x; vertices
+    # 44, 45 are stored at x < 0). 5 faces, 6 corners (3 red edges and 3 faces each), 9 triple
+    # lines: 6 - 9 + 5 = 2. Sides per face: 2, 3, 3, 5, 5. 1 face with 2 sides (two faces share two
+    # triple lines): degenerate. Volume positive with the file's body facet signs.
+    "21000-00000053.fe": {
+        "n_faces": 5,
+        "p_vector": None,
+        "status": "degenerate",
+        "class": None,
+        "truncations": None,
+        "n_two_gons": 1,
+        "volume": 4.29914939e-05,
+        "area": 0.00789146284,
+        "n_corners": 6,
+        "n_triple_lines": 9,
+    },
+}
+
+# Hand-made files in tests/data/evolver/, generated from explicit geometry by a throwaway script and
+# re-checked by the same from-scratch analysis as above (closure on the geometrically placed facets,
+# volume by the divergence theorem, area, corners, Euler characteristic, dual classification).
+# In these files every polygon facet is one grain face: each lies between two different bodies
+# (two_cubes' shared square, every Kelvin facet) or on the outside, where no two facets of a body
+# are coplanar.
+FOAMS = {
+    # Two unit cubes sharing the facet x = 1 (facet 2: +2 in body 1, -2 in body 2). Non-torus file,
+    # so no wrap marks on edges. 12 vertices, 20 edges, 11 quadrilateral facets. Per cube: 6
+    # squares, 8 corners of 3 faces, 12 edges: 8 - 12 + 6 = 2; dual = octahedron, no degree-3
+    # vertex, no empty triangle: flag. Volume exactly 1, area exactly 6 (outward signs).
+    "two_cubes.fe": {
+        "status": "ok",
+        "bodies": {
+            1: {
+                "n_faces": 6,
+                "p_vector": (0, 6),
+                "class": "flag",
+                "truncations": 0,
+                "volume": 1.0,
+                "area": 6.0,
+            },
+            2: {
+                "n_faces": 6,
+                "p_vector": (0, 6),
+                "class": "flag",
+                "truncations": 0,
+                "volume": 1.0,
+                "area": 6.0,
+            },
+        },
+    },
+    # Periodic Kelvin foam, periods = cube of side 8: the bcc Voronoi cells of the 16 points
+    # (0,0,0) + (4i, 4j, 4k) and (2,2,2) + (4i, 4j, 4k), i, j, k in {0, 1}, each a truncated
+    # octahedron (6 squares, 8 regular hexagons, edge sqrt(2)). In a box of side 8 a cell never
+    # touches its own periodic image, so every facet lies between two different bodies and every
+    # body has 24 corners of 3 faces, 36 edges, 14 faces: 24 - 36 + 14 = 2; p = (0, 6, 0, 8);
+    # the dual (tetrakis hexahedron) has no degree-3 vertex and no empty triangle: flag.
+    # Volume 32 = 8**3 / 16, area 12 + 24*sqrt(3) = 53.569219381653056.
+    "kelvin_foam.fe": {
+        "status": "ok",
+        "bodies": {
+            body: {
+                "n_faces": 14,
+                "p_vector": (0, 6, 0, 8),
+                "class": "flag",
+                "truncations": 0,
+                "volume": 32.0,
+                "area": 53.5692194,
+            }
+            for body in range(1, 17)
+        },
+    },
+    # Unit cube without its top facet (z = 1): 5 quadrilateral facets, outward signs. Edges 1, 7,
+    # 10, 11 (the top rim) are each used by only one facet of the body: not closed -> invalid.
+    "open_surface.fe": {
+        "status": "invalid",
+        "reason": "not closed",
+        "open_edges": (1, 7, 10, 11),
+    },
+    # Square pyramid, base the unit square at z = 0, apex (0.5, 0.5, 1): 4 triangles + 1 square,
+    # outward signs, closed: 5 - 8 + 5 = 2. The 4 base corners have 3 faces each, the apex has
+    # 4 faces (dual vertex figure not a triangle) -> non_simple. Volume 1/3, area 1 + sqrt(5).
+    "four_face_corner.fe": {
+        "status": "non_simple",
+        "reason": "corner of 4 faces",
+        "n_faces": 5,
+        "max_faces_at_corner": 4,
+        "volume": 0.333333333,
+        "area": 3.23606798,
+    },
+}

@@ -1,0 +1,140 @@
+"""The Surface Evolver reader on the grain-growth fixtures and on hand-made foams."""
+
+from __future__ import annotations
+
+import shutil
+from pathlib import Path
+
+import pyarrow as pa
+import pytest
+from click.testing import CliRunner
+from evolver_expected import FIXTURES, FOAMS
+
+from grainclass import classify, read_dataset
+from grainclass.cli import cli
+from grainclass.readers import sniff
+
+FIXTURE_DIR = Path(__file__).resolve().parents[2] / "shared" / "fixtures" / "grain3d"
+DATA = Path(__file__).resolve().parent / "data" / "evolver"
+
+
+def _rows(*paths, **kwargs) -> list[dict]:
+    batches = read_dataset([str(p) for p in paths], **kwargs)
+    return pa.concat_tables(classify(b) for b in batches).to_pylist()
+
+
+@pytest.fixture(scope="module")
+def fixture_rows() -> dict[str, dict]:
+    return {row["grain_id"] + ".fe": row for row in _rows(FIXTURE_DIR)}
+
+
+def test_folder_reads_every_fixture_as_one_grain(fixture_rows):
+    assert sorted(fixture_rows) == sorted(FIXTURES)
+    assert {Path(r["source"]).parent for r in fixture_rows.values()} == {FIXTURE_DIR}
+
+
+@pytest.mark.parametrize("name", sorted(FIXTURES))
+def test_fixture_grain_matches_independent_derivation(fixture_rows, name):
+    row, expected = fixture_rows[name], FIXTURES[name]
+    assert row["status"] == expected["status"]
+    assert row["n_faces"] == expected["n_faces"]
+    assert row["volume"] == pytest.approx(expected["volume"], rel=1e-8)
+    assert row["area"] == pytest.approx(expected["area"], rel=1e-8)
+    if expected["status"] == "ok":
+        assert tuple(row["p_vector"]) == expected["p_vector"]
+        assert row["class"] == expected["class"]
+        assert row["truncations"] == expected["truncations"]
+        # Euler: corners - triple lines + faces = 2, and every corner has three faces.
+        edges = sum(k * c for k, c in enumerate(row["p_vector"], 3)) // 2
+        assert edges == expected["n_triple_lines"] == 3 * row["n_faces"] - 6
+        assert 2 * edges // 3 == expected["n_corners"]
+    else:
+        assert "2-gon" in row["error"]
+        assert row["error"].startswith(f"{FIXTURE_DIR / name}:")
+
+
+def test_fixtures_listed_one_by_one_equal_the_folder(fixture_rows):
+    files = sorted(FIXTURE_DIR.glob("*.fe"))
+    rows = _rows(*files, chunk_size=3)
+    assert {r["grain_id"] + ".fe": r for r in rows} == fixture_rows
+
+
+def test_other_triple_edge_attribute_is_configurable(tmp_path):
+    text = (FIXTURE_DIR / "21000-00000029.fe").read_text().replace("color red", "color green")
+    path = tmp_path / "green.fe"
+    path.write_text(text)
+    row = _rows(path, triple_edges=("color", "green"))[0]
+    assert (row["class"], row["n_faces"]) == ("flag", 10)
+
+
+@pytest.mark.parametrize("name", ["two_cubes.fe", "kelvin_foam.fe"])
+def test_whole_foam_file_makes_every_body_a_grain(name):
+    rows = _rows(DATA / name)
+    expected = FOAMS[name]["bodies"]
+    assert [r["grain_id"] for r in rows] == [str(b) for b in expected]
+    for row in rows:
+        want = expected[int(row["grain_id"])]
+        assert row["status"] == "ok"
+        got = (row["n_faces"], tuple(row["p_vector"]), row["class"], row["truncations"])
+        assert got == (want["n_faces"], want["p_vector"], want["class"], want["truncations"])
+        assert row["volume"] == pytest.approx(want["volume"], rel=1e-9)
+        assert row["area"] == pytest.approx(want["area"], rel=1e-8)
+        assert row["isoperimetric"] == pytest.approx(
+            36 * 3.141592653589793 * want["volume"] ** 2 / want["area"] ** 3
+        )
+
+
+def test_open_surface_is_reported_not_crashed_on():
+    (row,) = _rows(DATA / "open_surface.fe")
+    assert row["status"] == "invalid"
+    assert "not a closed surface: edge 1 lies on 1 facet(s)" in row["error"]
+
+
+def test_corner_of_four_faces_is_non_simple():
+    (row,) = _rows(DATA / "four_face_corner.fe")
+    want = FOAMS["four_face_corner.fe"]
+    assert row["status"] == "non_simple"
+    assert f"a corner where {want['max_faces_at_corner']} faces meet" in row["error"]
+    assert row["volume"] == pytest.approx(want["volume"], rel=1e-8)
+
+
+def test_body_touching_its_own_periodic_image_is_reported(tmp_path):
+    # Two bodies sharing facet 1 become one body using it twice.
+    text = (DATA / "two_cubes.fe").read_text()
+    head, bodies = text.split("\nbodies\n")
+    lines = [line for line in bodies.splitlines() if line.strip()]
+    merged = "1\t" + " ".join(lines[0].split()[1:] + lines[1].split()[1:])
+    path = tmp_path / "self.fe"
+    path.write_text(head + "\nbodies\n" + merged + "\n")
+    (row,) = _rows(path)
+    assert row["status"] == "invalid"
+    assert "touches its own periodic image" in row["error"]
+
+
+def test_malformed_file_is_one_bad_grain_among_good_ones(tmp_path):
+    shutil.copy(FIXTURE_DIR / "21000-00000029.fe", tmp_path / "a.fe")
+    (tmp_path / "b.fe").write_text("vertices\n1 0 0 zero\n")
+    rows = _rows(tmp_path)
+    assert [(r["grain_id"], r["status"]) for r in rows] == [("a", "ok"), ("b", "invalid")]
+    assert rows[1]["error"] == f"{tmp_path / 'b.fe'}:2: cannot read this vertice line"
+
+
+def test_evolver_is_sniffed_without_the_extension(tmp_path):
+    path = tmp_path / "grain.txt"
+    shutil.copy(FIXTURE_DIR / "21000-00000007.fe", path)
+    assert sniff(path.read_bytes()[:4096]) == "evolver"
+    assert _rows(path)[0]["class"] == "flag"
+
+
+def test_cli_classifies_a_folder(tmp_path):
+    out = tmp_path / "g.parquet"
+    result = CliRunner().invoke(cli, ["classify", str(FIXTURE_DIR), "-o", str(out)])
+    assert result.exit_code == 0
+    assert "10 grains classified (8 ok, 2 degenerate)" in result.stderr
+
+
+def test_process_pool_reads_the_same_grains_in_the_same_order(fixture_rows, monkeypatch):
+    monkeypatch.setattr("grainclass.readers.evolver.PARALLEL_FILES", 2)
+    rows = _rows(FIXTURE_DIR)
+    assert [r["grain_id"] for r in rows] == sorted(r[:-3] for r in FIXTURES)
+    assert {r["grain_id"] + ".fe": r for r in rows} == fixture_rows
