@@ -4,7 +4,7 @@ VENV ?= .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed-stamp
 
-.PHONY: all install demo test test-nojit lint reproduce-enumeration clean
+.PHONY: all install demo test test-nojit lint bench reproduce-enumeration clean
 
 all: lint test
 
@@ -29,8 +29,12 @@ test-nojit: install
 
 lint: install
 	$(BIN)/python -m pip install --quiet --disable-pip-version-check -e '.[lint]'
-	$(BIN)/python -m ruff check src tests scripts
-	$(BIN)/python -m ruff format --check src tests scripts
+	$(BIN)/python -m ruff check src tests scripts benchmarks
+	$(BIN)/python -m ruff format --check src tests scripts benchmarks
+
+# Speed and memory, measured in one run (plantri n = 14, 15, 16; a few minutes).
+bench: install
+	$(BIN)/python benchmarks/bench.py
 
 # The paper's Table II, split-type table and all* round rows for n = 13 and 14 (a few minutes).
 reproduce-enumeration: install

@@ -130,3 +130,60 @@ def classify(lists: list[list[int]], seed: int = 0) -> dict:
         "belts4": belts,
         "penalty": n * weight,
     }
+
+
+def weinberg(lists: list[list[int]]) -> tuple[tuple[int, ...], int, int]:
+    """(canonical code, symmetry, chirality) by brute force: every start edge, both turns.
+
+    ``lists`` are rotation lists read as counter-clockwise seen from outside. Corners are the
+    triangles (v, x, y); leaving one across side (a, b) leads to the other triangle on a-b.
+    """
+    triangles = sorted(oriented_faces(lists))
+    on_side = {}
+    for t, (a, b, c) in enumerate(triangles):
+        for side in ((a, b), (b, c), (c, a)):
+            on_side[side] = t
+    # Around triangle (a, b, c): the corners across sides a-b, b-c, c-a, counter-clockwise.
+    around = [[on_side[(b, a)], on_side[(c, b)], on_side[(a, c)]] for a, b, c in triangles]
+    codes = []
+    for start in range(len(triangles)):
+        for first in range(3):
+            for turn in (-1, 1):
+                codes.append((_walk(around, start, first, turn), turn))
+    best = min(code for code, _ in codes)
+    turns = [turn for code, turn in codes if code == best]
+    chirality = 0 if len(set(turns)) == 2 else (1 if turns[0] == -1 else -1)
+    return best, len(turns), chirality
+
+
+def _walk(around, start, first, turn) -> tuple[int, ...]:
+    labels = {start: 1}
+    used = set()
+    code = [1]
+    cur, k = start, first
+    for _ in range(3 * len(around)):
+        used.add((cur, k))
+        nxt = around[cur][k]
+        back = around[nxt].index(cur)
+        if nxt not in labels:
+            labels[nxt] = len(labels) + 1
+            k = (back + turn) % 3
+        elif (nxt, back) not in used:
+            k = back
+        else:  # the next unused edge in the turning direction (none after the last step)
+            others = ((back + turn) % 3, (back + 2 * turn) % 3)
+            k = next((j for j in others if (nxt, j) not in used), back)
+        code.append(labels[nxt])
+        cur = nxt
+    return tuple(code)
+
+
+def edge_graph(lists: list[list[int]]) -> nx.Graph:
+    """The grain's edge graph: corners (dual triangles) adjacent across a dual edge."""
+    triangles = [frozenset(t) for t in oriented_faces(lists)]
+    graph = nx.Graph()
+    graph.add_nodes_from(range(len(triangles)))
+    for i, j in itertools.combinations(range(len(triangles)), 2):
+        if len(triangles[i] & triangles[j]) == 2:
+            graph.add_edge(i, j)
+    return graph

@@ -8,8 +8,8 @@ from pathlib import Path
 import pyarrow as pa
 import pytest
 from click.testing import CliRunner
-from evolver_expected import FIXTURES, FOAMS
 
+from evolver_expected import FIXTURES, FOAMS
 from grainclass import classify, read_dataset
 from grainclass.cli import cli
 from grainclass.readers import sniff

@@ -110,14 +110,17 @@ def classify(batch: GrainBatch, max_bitset_faces: int = MAX_BITSET_FACES) -> pa.
     """
     import numba
 
+    n_blocks = 16 * numba.get_num_threads()  # enough to balance the threads' load
     from grainclass._kernels.batch import _classify_batch
-    from grainclass._kernels.columns import _compact, _p_vectors
+    from grainclass._kernels.columns import _code_strings, _compact, _p_vectors
+    from grainclass._kernels.weinberg import _weinberg_batch
 
     g = len(batch)
     n_faces = batch.n_faces
     parsed = np.ones(g, np.bool_)
     parsed[list(batch.parse_errors)] = False
     status = np.zeros(g, np.int8)
+    consistent = np.zeros(g, np.bool_)
     err = np.zeros((g, 3), np.int64)
     family = np.full(g, -1, np.int8)
     fundamental = np.zeros(g, np.int32)
@@ -134,8 +137,9 @@ def classify(batch: GrainBatch, max_bitset_faces: int = MAX_BITSET_FACES) -> pa.
         batch.neighbors,
         parsed,
         max_bitset_faces,
-        16 * numba.get_num_threads(),  # blocks: enough to balance the threads' load
+        n_blocks,
         status,
+        consistent,
         err,
         family,
         fundamental,
@@ -155,6 +159,24 @@ def classify(batch: GrainBatch, max_bitset_faces: int = MAX_BITSET_FACES) -> pa.
     p_offsets, p_counts, triangles = _p_vectors(batch.face_offsets, batch.nbr_offsets, ok)
     trees = string_array(*_compact(tree_offsets, tree_bytes, tree_length), has_trees)
     split_k = belts[:, 0]
+    code_offsets = np.zeros(g + 1, np.int64)
+    np.cumsum(np.where(ok, 6 * n_faces - 11, 0), out=code_offsets[1:])
+    weinberg = np.zeros(int(code_offsets[-1]), np.int32)
+    symmetry = np.zeros(g, np.int32)
+    chirality = np.zeros(g, np.int8)
+    _weinberg_batch(
+        batch.face_offsets,
+        batch.nbr_offsets,
+        batch.neighbors,
+        ok,
+        consistent,
+        int(n_faces.max()) if g else 0,
+        n_blocks,
+        code_offsets,
+        weinberg,
+        symmetry,
+        chirality,
+    )
     volume, area = batch.volume, batch.area
     isoperimetric = None
     if volume is not None and area is not None:
@@ -195,6 +217,9 @@ def classify(batch: GrainBatch, max_bitset_faces: int = MAX_BITSET_FACES) -> pa.
         schema.SPLIT_M: _nullable(n_faces - 4 - split_k, is_flag, pa.int32()),
         schema.BELTS4: _nullable(belts[:, 1], is_flag, pa.int32()),
         schema.PENALTY: _nullable(n_faces * belts[:, 2], is_flag, pa.int64()),
+        schema.WEINBERG: string_array(*_code_strings(weinberg, code_offsets, ok), ok),
+        schema.SYMMETRY: _nullable(symmetry, ok, pa.int32()),
+        schema.CHIRALITY: _nullable(chirality, ok, pa.int8()),
         schema.VOLUME: _float_column(volume, g),
         schema.AREA: _float_column(area, g),
         schema.ISOPERIMETRIC: _float_column(isoperimetric, g),

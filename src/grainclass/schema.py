@@ -2,7 +2,7 @@
 
 import pyarrow as pa
 
-SCHEMA_VERSION = "1"
+SCHEMA_VERSION = "2"
 
 GRAIN_ID = "grain_id"
 SOURCE = "source"
@@ -22,6 +22,9 @@ SPLIT_K = "split_k"
 SPLIT_M = "split_m"
 BELTS4 = "belts4"
 PENALTY = "penalty"
+WEINBERG = "weinberg"
+SYMMETRY = "symmetry"
+CHIRALITY = "chirality"
 VOLUME = "volume"
 AREA = "area"
 ISOPERIMETRIC = "isoperimetric"
@@ -46,6 +49,9 @@ GRAIN_SCHEMA = pa.schema(
         (SPLIT_M, pa.int32()),
         (BELTS4, pa.int32()),
         (PENALTY, pa.int64()),
+        (WEINBERG, pa.string()),
+        (SYMMETRY, pa.int32()),
+        (CHIRALITY, pa.int8()),
         (VOLUME, pa.float64()),
         (AREA, pa.float64()),
         (ISOPERIMETRIC, pa.float64()),

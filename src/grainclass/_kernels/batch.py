@@ -59,6 +59,7 @@ def _classify_batch(
     max_small,
     n_blocks,
     status,
+    consistent,
     err,
     family,
     fundamental,
@@ -73,7 +74,8 @@ def _classify_batch(
 
     Layout: grain g has faces ``face_offsets[g]:face_offsets[g+1]``; face f has the local
     neighbour indices ``neighbors[nbr_offsets[f]:nbr_offsets[f+1]]``. ``err`` is int64[G, 3]
-    (code, a, b), ``belts`` int64[G, 3] (split_k, count, weight), ``tree_bytes`` holds 3n bytes
+    (code, a, b), ``consistent`` marks grains whose lists were already oriented one way,
+    ``belts`` int64[G, 3] (split_k, count, weight), ``tree_bytes`` holds 3n bytes
     per grain from ``tree_offsets[g]``. Family is -1 for grains that are not ok, depth 0 for
     fundamental ones. Grains with more than ``max_small`` faces skip the fast path. The grains
     are split into ``n_blocks`` contiguous blocks, each with its own scratch arrays.
@@ -100,6 +102,7 @@ def _classify_batch(
             out = tree_bytes[tree_offsets[g] : tree_offsets[g + 1]]
             if n <= max_small and _validate_small(n, nbr_offsets, neighbors, f0, adj, following):
                 status[g] = OK
+                consistent[g] = True
                 alive = _reduce_small(n, adj, removed_round, link)
                 fundamental[g] = popcount(alive)
                 if fundamental[g] == 4:

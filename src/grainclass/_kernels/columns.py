@@ -81,3 +81,42 @@ def _decimal_strings(values):
             data[i] = 48 + v % 10
             v //= 10
     return offsets, data
+
+
+@njit
+def _digits(v):
+    """Decimal digits of a non-negative integer."""
+    digits = 1
+    while v >= 10:
+        v //= 10
+        digits += 1
+    return digits
+
+
+@njit
+def _code_strings(codes, code_offsets, ok):
+    """Arrow string buffers for Weinberg codes written as ``(1,2,3,...)``; empty when not ok."""
+    n = ok.shape[0]
+    offsets = np.zeros(n + 1, np.int32)
+    for g in range(n):
+        size = 0
+        if ok[g]:
+            for i in range(code_offsets[g], code_offsets[g + 1]):
+                size += 1 + _digits(codes[i])  # "(" or "," and the number
+            size += 1  # ")"
+        offsets[g + 1] = offsets[g] + size
+    data = np.empty(offsets[n], np.uint8)
+    for g in range(n):
+        if not ok[g]:
+            continue
+        p = offsets[g]
+        for i in range(code_offsets[g], code_offsets[g + 1]):
+            data[p] = 40 if i == code_offsets[g] else 44  # "(" or ","
+            v = codes[i]
+            digits = _digits(v)
+            for k in range(digits, 0, -1):
+                data[p + k] = 48 + v % 10
+                v //= 10
+            p += digits + 1
+        data[p] = 41  # ")"
+    return offsets, data

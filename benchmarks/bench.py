@@ -1,0 +1,156 @@
+"""``make bench``: how fast and how big, measured in one run on this machine.
+
+Reports (a) plantri alone against plantri piped through ``grainclass classify`` and through
+``grainclass summarize``, with ratios; (b) kernel-only grains per second; (c) 268,402 grains of
+adjacency text end to end; (d) peak resident memory of every run; (e) the first run after
+installation (numba compiling) against a warm run, and ``grainclass --help``.
+Benchmarks report; they assert nothing (the tests do that).
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+from grainclass.plantri import find_plantri
+
+ROOT = Path(__file__).resolve().parent.parent
+GRAINCLASS = [sys.executable, "-m", "grainclass"]
+
+
+def timed(command: str, env: dict | None = None) -> tuple[float, float]:
+    """Wall seconds and peak resident MB of a shell command (of its largest process)."""
+    fd, record = tempfile.mkstemp(suffix=".time")
+    os.close(fd)
+    wrapped = f"/usr/bin/time -f '%M' -o {record} -a bash -c {_quote(command)}"
+    start = time.perf_counter()
+    subprocess.run(wrapped, shell=True, check=True, env=env, stderr=subprocess.DEVNULL)
+    seconds = time.perf_counter() - start
+    peak_kb = max(int(line) for line in Path(record).read_text().split() if line.isdigit())
+    os.unlink(record)
+    return seconds, peak_kb / 1024
+
+
+def _quote(text: str) -> str:
+    return "'" + text.replace("'", "'\\''") + "'"
+
+
+def bench_pipelines(sizes: list[int], work: Path) -> None:
+    plantri = find_plantri()
+    gc = " ".join(GRAINCLASS)
+    print("(a) plantri N alone, | classify - -o out.parquet, | summarize -  (wall s, peak MB)")
+    for n in sizes:
+        alone, mem_alone = timed(f"{plantri} {n} > /dev/null 2>&1")
+        out = work / f"all{n}.parquet"
+        classify, mem_c = timed(f"{plantri} {n} 2>/dev/null | {gc} classify - -o {out} -q")
+        summarize, mem_s = timed(f"{plantri} {n} 2>/dev/null | {gc} summarize - -q > /dev/null")
+        print(
+            f"    n={n}: plantri {alone:6.2f} s ({mem_alone:5.0f} MB) | "
+            f"classify {classify:6.2f} s ({mem_c:5.0f} MB) ratio {classify / alone:4.2f} | "
+            f"summarize {summarize:6.2f} s ({mem_s:5.0f} MB) ratio {summarize / alone:4.2f}"
+        )
+        out.unlink(missing_ok=True)
+
+
+def bench_kernel(sizes: list[int], work: Path) -> None:
+    import numba
+
+    from grainclass.classification import classify
+    from grainclass.readers import read_dataset
+
+    plantri = find_plantri()
+    print("(b) kernel + columns only, in process (grains/s)")
+    for n in sizes:
+        path = work / f"p{n}.pc"
+        subprocess.run([plantri, str(n), str(path)], check=True, capture_output=True)
+        batches = []
+        for batch in read_dataset(str(path), chunk_size=100_000):
+            batches.append(batch)
+            if sum(len(b) for b in batches) >= 2_000_000:
+                break
+        grains = sum(len(b) for b in batches)
+        classify(batches[0])
+        for threads in sorted({1, numba.config.NUMBA_NUM_THREADS}):
+            numba.set_num_threads(threads)
+            start = time.perf_counter()
+            for batch in batches:
+                classify(batch)
+            rate = grains / (time.perf_counter() - start)
+            print(f"    n={n}: {threads} thread(s): {rate / 1e6:5.2f} M grains/s over {grains:,}")
+        path.unlink()
+
+
+def write_adjacency(path: Path, n_vertices: int, count: int) -> None:
+    """The first ``count`` triangulations with n vertices as adjacency text."""
+    from grainclass.readers import read_dataset
+
+    plantri = find_plantri()
+    raw = path.with_suffix(".pc")
+    subprocess.run([plantri, str(n_vertices), str(raw)], check=True, capture_output=True)
+    written = 0
+    with open(path, "w") as out:
+        for batch in read_dataset(str(raw), chunk_size=100_000):
+            for g in range(len(batch)):
+                if written == count:
+                    break
+                f0, f1 = batch.face_offsets[g], batch.face_offsets[g + 1]
+                offsets, neighbors = batch.nbr_offsets, batch.neighbors
+                faces = [
+                    " ".join(map(str, neighbors[offsets[f] : offsets[f + 1]]))
+                    for f in range(f0, f1)
+                ]
+                out.write(f"g{written}\t{';'.join(faces)}\n")
+                written += 1
+    raw.unlink()
+
+
+def bench_adjacency(work: Path) -> None:
+    path = work / "grains-268402.txt"
+    write_adjacency(path, 14, 268_402)
+    gc = " ".join(GRAINCLASS)
+    seconds, mem = timed(f"{gc} classify {path} -o {work / 'adj.parquet'} -q")
+    size = path.stat().st_size / 1e6
+    print(f"(c) 268,402 grains of adjacency text ({size:.0f} MB): {seconds:.2f} s, {mem:.0f} MB")
+
+
+def bench_startup(work: Path) -> None:
+    gc = " ".join(GRAINCLASS)
+    example = ROOT / "examples" / "polytopes.txt"
+    cache = work / "numba-cache"
+    shutil.rmtree(cache, ignore_errors=True)
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(cache))
+    first, _ = timed(f"{gc} classify {example} -o {work / 'e.parquet'} -q", env)
+    warm, _ = timed(f"{gc} classify {example} -o {work / 'e.parquet'} -q", env)
+    helps = [timed(f"{gc} --help > /dev/null")[0] for _ in range(3)]
+    console = shutil.which("grainclass")
+    script = [timed(f"{console} --help > /dev/null")[0] for _ in range(3)] if console else []
+    print(f"(e) first run after installation (compiling): {first:.2f} s; warm run: {warm:.2f} s")
+    print(
+        f"    grainclass --help: {min(script):.3f} s (console script), " if script else "    ",
+        f"{min(helps):.3f} s (python -m grainclass)",
+        sep="",
+    )
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--sizes", type=int, nargs="+", default=[14, 15, 16])
+    parser.add_argument("--kernel-sizes", type=int, nargs="+", default=[14, 16])
+    args = parser.parse_args()
+    print(f"grainclass benchmarks on {os.cpu_count()} cores, {time.strftime('%Y-%m-%d %H:%M')}")
+    with tempfile.TemporaryDirectory() as tmp:
+        work = Path(tmp)
+        bench_startup(work)
+        bench_pipelines(args.sizes, work)
+        bench_kernel(args.kernel_sizes, work)
+        bench_adjacency(work)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,232 @@
+"""Weinberg vectors of grains, as VoroTop writes them (Weinberg 1965; Lazar et al. 2015).
+
+The walk runs on the grain's own edge graph: its vertices are the grain's corners (the triangles
+of the dual triangulation), three edges at each. From a start edge a -> b and an orientation:
+label vertices in order of first arrival and write the label of every vertex reached; at a new
+vertex turn right (take the next edge around it, in the walk's rotational direction); at an old
+vertex go back along the reverse edge if that is unused, else take the next unused edge around
+it in the same direction; stop when every directed edge is used. A code has 2E + 1 entries.
+The canonical vector is the smallest code, as integer sequences, over all 2E start edges and
+both orientations; a walk is abandoned as soon as it exceeds the best so far.
+
+Orientation +1 turns right with the faces seen from outside, taking the input's neighbour lists
+as counter-clockwise seen from outside (the orientation of face 0's list for text input).
+"""
+
+import numpy as np
+from numba import prange
+
+from grainclass._kernels.validate import _orient
+from grainclass._numba import njit, njit_parallel
+
+
+@njit
+def _corners(n, off, nb, sign, rot, pos, corner, corner_nbr, left_face):
+    """The grain's edge graph: ``corner_nbr[T]`` = the 3 corners next to corner T, in
+    counter-clockwise order, and ``left_face[T, k]`` the size of the grain face on the left of
+    the edge T -> corner_nbr[T, k] (the face on its right is the left face of edge k + 1).
+    Corners are the dual's triangles; returns their number.
+
+    ``sign`` (+1/-1 per face) orients the lists consistently; ``rot`` (darts), ``pos`` (n x n)
+    and ``corner`` (darts) are scratch.
+    """
+    for v in range(n):
+        d = off[v + 1] - off[v]
+        for i in range(d):
+            rot[off[v] + i] = nb[off[v] + (i if sign[v] > 0 else d - 1 - i)]
+    for v in range(n):
+        for i in range(off[v], off[v + 1]):
+            pos[v, rot[i]] = i - off[v]
+    # Loops over darts i of face v with x = rot[i] and y = rot[next] (no modulo: cheaper).
+    count = 0
+    for v in range(n):
+        s, e = off[v], off[v + 1]
+        for i in range(s, e):
+            x = rot[i]
+            y = rot[i + 1] if i + 1 < e else rot[s]
+            if v < x and v < y:
+                corner[i] = count
+                count += 1
+    for v in range(n):  # every other dart takes the id of its triangle's dart at the least face
+        s, e = off[v], off[v + 1]
+        for i in range(s, e):
+            x = rot[i]
+            y = rot[i + 1] if i + 1 < e else rot[s]
+            if x < v and x < y:
+                corner[i] = corner[off[x] + pos[x, y]]
+            elif y < v and y < x:
+                corner[i] = corner[off[y] + pos[y, v]]
+    for v in range(n):
+        s, e = off[v], off[v + 1]
+        for i in range(s, e):
+            x = rot[i]
+            y = rot[i + 1] if i + 1 < e else rot[s]
+            sx, ex = off[x], off[x + 1]
+            before_y = sx + pos[x, y] - 1
+            t = corner[i]
+            # Corner t is the counter-clockwise triangle (v, x, y); leaving it across its side
+            # a -> b (in that order), face a lies on the left and face b on the right.
+            corner_nbr[t, 0] = corner[i - 1 if i > s else e - 1]  # across side v-x
+            corner_nbr[t, 1] = corner[before_y if before_y >= sx else ex - 1]  # across x-y
+            corner_nbr[t, 2] = corner[i + 1 if i + 1 < e else s]  # across side y-v
+            left_face[t, 0] = e - s
+            left_face[t, 1] = ex - sx
+            left_face[t, 2] = off[y + 1] - off[y]
+    return count
+
+
+@njit
+def _turned(k, turn):
+    """Edge index k moved one step by turn (+1/-1) around a corner of three (no modulo)."""
+    k += turn
+    return k - 3 if k > 2 else (k + 3 if k < 0 else k)
+
+
+@njit
+def _walk(corner_nbr, t, start, first, turn, best, state, stamp, gen, label, used, code):
+    """One Weinberg walk from ``start`` along its edge ``first``, turning by ``turn`` (-1 right,
+    +1 left, in counter-clockwise index steps). Compares with ``best`` as it goes: returns -1 if
+    the code is smaller (``code`` then holds it), 0 if equal, +1 as soon as it is larger.
+    ``stamp``/``used`` hold ``gen`` for what this walk has seen, so nothing is reset per walk.
+    """
+    length = 3 * t + 1  # 2E + 1 with E = 3t/2
+    cmp = state
+    stamp[start] = gen
+    label[start] = 1
+    next_label = 2
+    code[0] = 1
+    cur, k = start, first
+    for step in range(1, length):
+        used[cur, k] = gen
+        nxt = corner_nbr[cur, k]
+        back = 0
+        while corner_nbr[nxt, back] != cur:
+            back += 1
+        if stamp[nxt] != gen:
+            stamp[nxt] = gen
+            label[nxt] = next_label
+            next_label += 1
+            k = _turned(back, turn)
+        elif used[nxt, back] != gen:
+            k = back
+        else:
+            k = _turned(back, turn)
+            if used[nxt, k] == gen:
+                k = _turned(k, turn)
+        code[step] = label[nxt]
+        if cmp == 0:
+            if code[step] > best[step]:
+                return 1
+            if code[step] < best[step]:
+                cmp = -1
+        cur = nxt
+    return cmp
+
+
+@njit
+def _weinberg(corner_nbr, left_face, t, best, stamp, label, used, code):
+    """Canonical code into ``best``; returns (symmetry, chirality).
+
+    A walk first goes round the face on its turning side and writes 1 again after as many
+    steps as that face has sides, so only edges along faces of the smallest size can start the
+    smallest code.
+    """
+    length = 3 * t + 1
+    smallest = left_face[0, 0]
+    for c in range(t):
+        for k in range(3):
+            smallest = min(smallest, left_face[c, k])
+    best[0] = -1  # nothing yet: the first complete walk wins
+    symmetry = right = left = 0
+    gen = 1  # the caller zeroed stamp and used
+    for start in range(t):
+        for first in range(3):
+            for turn in (-1, 1):
+                # A walk goes round the face on its turning side first: turning right, the face
+                # right of edge ``first`` (the left face of the next edge); turning left, the
+                # face left of it.
+                side = (first + 1) % 3 if turn < 0 else first
+                face = left_face[start, side]
+                if face != smallest:
+                    continue
+                state = -1 if best[0] < 0 else 0
+                result = _walk(
+                    corner_nbr, t, start, first, turn, best, state, stamp, gen, label, used, code
+                )
+                gen += 1
+                if result < 0:
+                    best[:length] = code[:length]
+                    symmetry = 1
+                    right, left = (1, 0) if turn < 0 else (0, 1)
+                elif result == 0:
+                    symmetry += 1
+                    if turn < 0:
+                        right += 1
+                    else:
+                        left += 1
+    chirality = 0 if right and left else (1 if right else -1)
+    return symmetry, chirality
+
+
+@njit
+def _oriented_signs(n, off, nb):
+    """Orientation of each face's list relative to face 0 (lists of an ok grain)."""
+    adj = np.zeros((n, n), np.uint8)
+    for v in range(n):
+        for i in range(off[v], off[v + 1]):
+            adj[v, nb[i]] = 1
+    sign = np.zeros(n, np.int64)
+    _orient(n, off, nb, adj, sign)
+    return sign
+
+
+@njit_parallel
+def _weinberg_batch(
+    face_offsets,
+    nbr_offsets,
+    neighbors,
+    ok,
+    consistent,
+    max_faces,
+    n_blocks,
+    code_offsets,
+    codes,
+    symmetry,
+    chirality,
+):
+    """Weinberg vectors of the ok grains: grain g's code goes to ``codes[code_offsets[g]:]``
+    (6n - 11 entries), with its symmetry (automorphisms, reflections included) and chirality.
+
+    ``consistent[g]``: the lists already turn one way (no orientation to recover). Grains are
+    split into ``n_blocks`` blocks with scratch arrays for up to ``max_faces`` faces.
+    """
+    n_grains = face_offsets.shape[0] - 1
+    n_blocks = min(n_grains, n_blocks)
+    for block in prange(n_blocks):
+        t_max = max(2 * max_faces - 4, 1)
+        darts = max(6 * max_faces - 12, 1)
+        rot = np.empty(darts, np.int64)
+        pos = np.empty((max_faces, max_faces), np.int64)
+        corner = np.empty(darts, np.int64)
+        corner_nbr = np.empty((t_max, 3), np.int64)
+        left_face = np.empty((t_max, 3), np.int64)
+        stamp = np.zeros(t_max, np.int64)
+        label = np.empty(t_max, np.int64)
+        used = np.zeros((t_max, 3), np.int64)
+        code = np.empty(3 * t_max + 1, np.int32)
+        ones = np.ones(max_faces, np.int64)
+        for g in range(block * n_grains // n_blocks, (block + 1) * n_grains // n_blocks):
+            if not ok[g]:
+                continue
+            f0 = face_offsets[g]
+            n = face_offsets[g + 1] - f0
+            off = nbr_offsets[f0 : f0 + n + 1] - nbr_offsets[f0]
+            nb = neighbors[nbr_offsets[f0] : nbr_offsets[f0 + n]]
+            sign = ones if consistent[g] else _oriented_signs(n, off, nb)
+            t = _corners(n, off, nb, sign, rot, pos, corner, corner_nbr, left_face)
+            best = codes[code_offsets[g] : code_offsets[g] + 3 * t + 1]
+            stamp[:t] = 0
+            used[:t] = 0
+            symmetry[g], chirality[g] = _weinberg(
+                corner_nbr, left_face, t, best, stamp, label, used, code
+            )

@@ -1,0 +1,104 @@
+"""Weinberg vectors, symmetry and chirality against the issue's facts, a brute-force oracle and
+networkx automorphism counts."""
+
+from __future__ import annotations
+
+import pyarrow as pa
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from networkx.algorithms.isomorphism import GraphMatcher
+
+import reference
+from conftest import EXAMPLES
+from grainclass import GrainBatch, classify, read_dataset
+from strategies import mirror, relabel, triangulations
+from test_properties import _read_planar_code
+
+CUBE_CODE = "(1,2,3,4,1,4,5,6,1,6,7,2,7,8,3,8,5,8,7,6,5,4,3,2,1)"
+
+
+def _rows(grains):
+    return classify(GrainBatch.from_lists(grains)).to_pylist()
+
+
+@pytest.fixture(scope="module")
+def examples() -> dict[str, dict]:
+    table = classify(next(read_dataset(str(EXAMPLES / "polytopes.txt"))))
+    return {row["grain_id"]: row for row in table.to_pylist()}
+
+
+def test_cube_code_and_symmetry(examples):
+    assert examples["cube"]["weinberg"] == CUBE_CODE
+    assert examples["cube"]["symmetry"] == 48
+
+
+@pytest.mark.parametrize(
+    ("grain", "order"), [("tetrahedron", 24), ("dodecahedron", 120), ("kelvin", 48)]
+)
+def test_symmetry_orders_of_regular_grains(examples, grain, order):
+    assert examples[grain]["symmetry"] == order
+    assert examples[grain]["chirality"] == 0
+
+
+def test_relabelled_dodecahedron_has_the_same_code(examples):
+    # weaire_phelan_12 is the dodecahedron with its faces numbered differently.
+    assert examples["weaire_phelan_12"]["weinberg"] == examples["dodecahedron"]["weinberg"]
+
+
+@pytest.mark.parametrize("n", range(4, 12))
+def test_every_plantri_triangulation_has_its_own_code(plantri_output, n):
+    table = pa.concat_tables(classify(b) for b in read_dataset(str(plantri_output(n))))
+    codes = table.column("weinberg").to_pylist()
+    assert None not in codes
+    assert len(set(codes)) == len(codes)
+
+
+@pytest.mark.parametrize("n", range(4, 11))
+def test_symmetry_equals_automorphisms_of_the_edge_graph(plantri_output, n):
+    graphs = _read_planar_code(plantri_output(n).read_bytes())
+    for lists, row in zip(graphs, _rows(graphs), strict=True):
+        graph = reference.edge_graph(lists)
+        automorphisms = sum(1 for _ in GraphMatcher(graph, graph).isomorphisms_iter())
+        assert row["symmetry"] == automorphisms
+
+
+@pytest.mark.parametrize("n", range(4, 10))
+def test_codes_agree_with_brute_force_on_every_triangulation(plantri_output, n):
+    graphs = _read_planar_code(plantri_output(n).read_bytes())
+    for lists, row in zip(graphs, _rows(graphs), strict=True):
+        code, symmetry, chirality = reference.weinberg(lists)
+        assert row["weinberg"] == "(" + ",".join(map(str, code)) + ")"
+        assert (row["symmetry"], row["chirality"]) == (symmetry, chirality)
+
+
+@settings(max_examples=60, deadline=None)
+@given(triangulations(max_vertices=18), st.randoms(use_true_random=False))
+def test_relabelling_keeps_and_mirroring_flips_chirality(lists, rng):
+    perm = list(range(len(lists)))
+    rng.shuffle(perm)
+    mixed = [
+        list(reversed(nbrs)) if f and rng.random() < 0.5 else nbrs for f, nbrs in enumerate(lists)
+    ]
+    original, relabelled, mirrored, mixed_row = _rows(
+        [lists, relabel(lists, perm), mirror(lists), mixed]
+    )
+    code, symmetry, chirality = reference.weinberg(lists)
+    assert original["weinberg"] == "(" + ",".join(map(str, code)) + ")"
+    assert (original["symmetry"], original["chirality"]) == (symmetry, chirality)
+    keys = ("weinberg", "symmetry", "chirality")
+    assert [relabelled[k] for k in keys] == [original[k] for k in keys]
+    assert [mixed_row[k] for k in keys] == [original[k] for k in keys]  # face 0 sets the sense
+    assert mirrored["weinberg"] == original["weinberg"]
+    assert mirrored["symmetry"] == original["symmetry"]
+    assert mirrored["chirality"] == -original["chirality"]
+
+
+def test_papers_grains_a_b_c(plantri_output):
+    # The paper's Fig. 15: three 10-face flag grains with p-vector (0,4,4,2). A has two belts of
+    # type 3:4:3 and symmetry order 8, B one and order 2, C none and order 2. By the definition
+    # (every 4-belt counts) their penalties are 540, 450 and 280.
+    table = pa.concat_tables(classify(b) for b in read_dataset(str(plantri_output(10))))
+    rows = [r for r in table.to_pylist() if r["class"] == "flag" and r["p_vector"] == [0, 4, 4, 2]]
+    got = sorted((r["penalty"], r["symmetry"], r["split_k"]) for r in rows)
+    assert got == [(280, 2, 2), (450, 2, 3), (540, 8, 3)]
