@@ -136,7 +136,10 @@ def test_summarize_text_has_headline_and_three_tables(runner, grains_parquet):
     assert lines[0] == (
         "grains: 246 (ok 246, degenerate 0, non_simple 0, invalid 0); "
         f"mean faces per grain {(sum(_faces()) + 233 * 10) / 246:.3f}; "
-        f"triangles {100 * _triangle_share():.2f}% of faces"
+        f"triangles {100 * _triangle_share():.2f}% of faces; "
+        # 233 distinct triangulations (plantri lists each type once) + 13 examples, of which
+        # the two dodecahedra are one type.
+        "245 distinct types"
     )
     # Split-type table, n = 10 row: the paper's 2 x 1:5, 1 x 2:4, 7 x 3:3.
     assert any(

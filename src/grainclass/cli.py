@@ -22,6 +22,7 @@ Exit codes:
 
 INPUT_FORMATS = ("auto", "adjacency", "planar_code", "evolver")
 STATUSES = ("ok", "degenerate", "non_simple", "invalid")
+CLASSES = ("stacked", "flag", "flag+1", "flag+1+1", "flag+2", "flag>=3", "sc", "sc+1", "sc>=2")
 
 
 def _key_value(ctx: click.Context, param: click.Parameter, value: str) -> tuple[str, str]:
@@ -220,8 +221,76 @@ def summarize_cmd(
         summary = summarize(_progress(quiet).wrap(stream), n_values)
     except GrainclassError as exc:
         raise click.ClickException(str(exc)) from None
-    rendered = render(summary, tables, fmt)
-    data = rendered.encode() if isinstance(rendered, str) else rendered
+    _write(output, _as_bytes(render(summary, tables, fmt)))
+
+
+@cli.command("types", epilog=EXIT_CODES)
+@click.argument("grains", nargs=-1, required=True, metavar="GRAINS...")
+@click.option("--top", type=click.IntRange(min=1), help="Only the K most frequent types.")
+@click.option("--n", "n_faces", type=click.IntRange(min=4), help="Only grains with N faces.")
+@click.option(
+    "--class", "class_name", type=click.Choice(CLASSES), help="Only grains of this class."
+)
+@click.option(
+    "--format",
+    "output_format",
+    type=click.Choice(["text", "csv", "markdown", "latex", "json", "parquet"]),
+    help="Output format (default: from the -o extension, else text).",
+)
+@click.option("-o", "--output", default="-", metavar="FILE", help="Write here instead of stdout.")
+@click.option(
+    "--vorotop",
+    metavar="FILE",
+    help="Also write VoroTop's .distribution file: (code) total left achiral right.",
+)
+@_input_options("--input-format")
+def types_cmd(
+    grains: tuple[str, ...],
+    top: int | None,
+    n_faces: int | None,
+    class_name: str | None,
+    output_format: str | None,
+    output: str,
+    vorotop: str | None,
+    input_format: str,
+    triple_edges: tuple[str, str],
+    chunk_size: int,
+    jobs: int | None,
+    quiet: bool,
+) -> None:
+    """Count grains by combinatorial type (Weinberg vector), most frequent first.
+
+    Each type comes with its faces, p-vector, class, split type and penalty (flag grains),
+    symmetry, count and fraction. GRAINS are per-grain Parquet tables or any input classify reads.
+    """
+    from grainclass.errors import GrainclassError
+    from grainclass.frequencies import COLUMNS, type_frequencies, vorotop_distribution
+    from grainclass.pipeline import grain_tables
+    from grainclass.render import EXTENSIONS, render_frame
+
+    fmt = output_format or EXTENSIONS.get(os.path.splitext(output)[1].lower(), "text")
+    if fmt == "parquet" and output == "-" and sys.stdout.isatty():
+        raise click.UsageError("refusing to write Parquet to a terminal; use -o FILE")
+    _set_jobs(jobs)
+    in_fmt = None if input_format == "auto" else input_format
+    try:
+        stream = grain_tables(list(grains), COLUMNS, in_fmt, chunk_size, triple_edges)
+        table = type_frequencies(_progress(quiet).wrap(stream), n_faces, class_name)
+    except GrainclassError as exc:
+        raise click.ClickException(str(exc)) from None
+    if vorotop:
+        _write(vorotop, vorotop_distribution(table).encode())
+    shown = table.head(top) if top else table
+    shown = shown.drop(columns=["left", "achiral", "right"])
+    _write(output, _as_bytes(render_frame(shown, fmt, f"{len(table)} types, most frequent first")))
+
+
+def _as_bytes(rendered: str | bytes) -> bytes:
+    return rendered.encode() if isinstance(rendered, str) else rendered
+
+
+def _write(output: str, data: bytes) -> None:
+    """Write to a file or, for ``-``, standard output; a closed pipe ends quietly."""
     try:
         if output == "-":
             sys.stdout.buffer.write(data)

@@ -27,13 +27,14 @@ TITLES = {
 
 
 def headline(summary: Summary) -> str:
-    """One line of headline figures: grains by status, mean faces, percent triangles."""
+    """One line of headline figures: grains by status, mean faces, percent triangles, types."""
     h = summary.headline
     return (
         f"grains: {h['grains']} (ok {h['ok']}, degenerate {h['degenerate']}, "
         f"non_simple {h['non_simple']}, invalid {h['invalid']}); "
         f"mean faces per grain {h['mean_faces']:.3f}; "
-        f"triangles {h['triangle_faces_percent']:.2f}% of faces"
+        f"triangles {h['triangle_faces_percent']:.2f}% of faces; "
+        f"{h['types']} distinct types"
     )
 
 
@@ -77,6 +78,24 @@ def _latex(table: pd.DataFrame) -> str:
     return "\n".join(lines)
 
 
+def render_frame(table: pd.DataFrame, fmt: str, title: str) -> str | bytes:
+    """One table on its own (``grainclass types``) in one of :data:`FORMATS`."""
+    if fmt == "parquet":
+        buffer = io.BytesIO()
+        table.to_parquet(buffer, index=False)
+        return buffer.getvalue()
+    if fmt == "json":
+        return json.dumps(json.loads(table.to_json(orient="records", double_precision=15)), indent=2) + "\n"
+    if fmt == "csv":
+        return table.to_csv(index=False)
+    shown = table.astype(str).replace({"<NA>": "", "nan": "", "NaN": "", "None": ""})
+    if fmt == "markdown":
+        return f"**{title}**\n\n{_markdown(shown)}\n"
+    if fmt == "latex":
+        return f"% {title}\n{_latex(shown)}\n"
+    return f"{title}\n{shown.to_string(index=False)}\n"
+
+
 def render(summary: Summary, tables: tuple[str, ...], fmt: str) -> str | bytes:
     """Render the headline and the named tables in one of :data:`FORMATS`.
 
@@ -91,7 +110,7 @@ def render(summary: Summary, tables: tuple[str, ...], fmt: str) -> str | bytes:
     if fmt == "json":
         payload: dict[str, object] = {"headline": summary.headline}
         for name in tables:
-            payload[name] = json.loads(summary.table(name).to_json(orient="records"))
+            payload[name] = json.loads(summary.table(name).to_json(orient="records", double_precision=15))
         return json.dumps(payload, indent=2) + "\n"
     parts = {"csv": [], "latex": [f"% {headline(summary)}"]}.get(fmt, [headline(summary)])
     for name in tables:

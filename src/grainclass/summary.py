@@ -8,6 +8,7 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 import pyarrow as pa
+import pyarrow.compute as pc
 
 from grainclass import schema
 
@@ -19,7 +20,7 @@ KEYS = [
     schema.ROUND_K,
     schema.SPLIT_K,
 ]
-COLUMNS = [*KEYS, schema.N_TRIANGLES]
+COLUMNS = [*KEYS, schema.N_TRIANGLES, schema.WEINBERG]
 ROUND_LEVELS = range(7)
 TABLES = ("classes", "round", "split")
 COUNT, TRIANGLES = "count", "triangles"
@@ -45,7 +46,7 @@ def tally(grains: pa.Table) -> pd.DataFrame:
     Every table of the paper is a sum over these groups, so a stream of batches can be summarized
     in bounded memory: tally each batch, then :func:`merge_tallies`.
     """
-    grouped = grains.select(COLUMNS).group_by(KEYS, use_threads=False)
+    grouped = grains.select([*KEYS, schema.N_TRIANGLES]).group_by(KEYS, use_threads=False)
     counts = grouped.aggregate([(schema.N_TRIANGLES, "sum"), ([], "count_all")]).to_pandas()
     return counts.rename(columns={f"{schema.N_TRIANGLES}_sum": TRIANGLES, "count_all": COUNT})
 
@@ -62,7 +63,20 @@ def _ok(counts: pd.DataFrame) -> pd.DataFrame:
     return counts[counts[schema.STATUS] == "ok"]
 
 
-def _headline(counts: pd.DataFrame) -> dict[str, float | int]:
+def type_hashes(grains: pa.Table) -> np.ndarray:
+    """64-bit hashes of the distinct Weinberg codes of a table (uint64)."""
+    from grainclass._kernels.columns import _fnv1a
+
+    codes = pc.unique(grains.column(schema.WEINBERG).combine_chunks().drop_null())
+    if not len(codes):
+        return np.zeros(0, np.uint64)
+    codes = codes.cast(pa.string())
+    _, offsets, data = codes.buffers()
+    starts = np.frombuffer(offsets, np.int32, len(codes) + 1, codes.offset * 4)
+    return _fnv1a(starts, np.frombuffer(data, np.uint8))
+
+
+def _headline(counts: pd.DataFrame, distinct_types: int) -> dict[str, float | int]:
     ok = _ok(counts)
     by_status = counts.groupby(schema.STATUS)[COUNT].sum()
     grains = int(ok[COUNT].sum())
@@ -74,6 +88,7 @@ def _headline(counts: pd.DataFrame) -> dict[str, float | int]:
         "triangle_faces_percent": (
             100.0 * float(ok[TRIANGLES].sum()) / faces if faces else float("nan")
         ),
+        "types": distinct_types,
     }
 
 
@@ -157,9 +172,14 @@ def summarize(grains: pa.Table | Iterable[pa.Table], n_values: tuple[int, ...] =
     [['6', 1, 1], ['total', 1, 1]]
     """
     tables = [grains] if isinstance(grains, pa.Table) else grains
-    counts = merge_tallies([tally(table) for table in tables])
+    tallies, hashes = [], []
+    for table in tables:
+        tallies.append(tally(table))
+        hashes.append(type_hashes(table))
+    counts = merge_tallies(tallies)
+    distinct = np.unique(np.concatenate(hashes)).size if hashes else 0
     return Summary(
-        headline=_headline(counts),
+        headline=_headline(counts, distinct),
         classes=class_counts(counts),
         round=round_percentages(counts, tuple(n_values)),
         split=split_counts(counts),

@@ -120,3 +120,17 @@ def _code_strings(codes, code_offsets, ok):
             p += digits + 1
         data[p] = 41  # ")"
     return offsets, data
+
+
+@njit
+def _fnv1a(offsets, data):
+    """64-bit FNV-1a hash of each string of an Arrow string array (offsets, bytes)."""
+    n = offsets.shape[0] - 1
+    out = np.empty(n, np.uint64)
+    prime = np.uint64(1099511628211)
+    for g in range(n):
+        h = np.uint64(14695981039346656037)
+        for i in range(offsets[g], offsets[g + 1]):
+            h = (h ^ np.uint64(data[i])) * prime
+        out[g] = h
+    return out

@@ -211,16 +211,16 @@ def _add_facial(third, a, b, c, err):
 
 
 @njit
-def _embed_triangulation(n, off, nb, adj, err):
+def _embed_triangulation(n, off, nb, adj, err, third):
     """Recover the embedding of a graph with 3n - 6 edges from its graph alone.
 
     In a triangulation of the sphere the faces are exactly the triangles whose removal leaves
     the graph connected. The graph is a sphere triangulation iff those triangles cover every
     edge twice and close up into one cycle around every vertex (then F = 2n - 4 and the
-    Euler characteristic is 2). O(T * E) for T triangles: used only when the lists are not
-    in cyclic order.
+    Euler characteristic is 2). ``third[u, v]`` (int32[n, n, 2], filled with -1) gets the third
+    vertices of the two faces on edge u-v. O(T * E) for T triangles: used only when the lists
+    are not in cyclic order.
     """
-    third = np.full((n, n, 2), -1, np.int32)
     skip = np.zeros(n, np.bool_)
     for u in range(n):
         for i in range(off[u], off[u + 1]):
@@ -262,6 +262,36 @@ def _embed_triangulation(n, off, nb, adj, err):
 
 
 @njit
+def _rotation(n, off, nb, rot):
+    """Counter-clockwise rotation lists of an ok grain into ``rot`` (same layout as ``nb``),
+    oriented like face 0's list where the lists are cyclic, else recovered from the graph."""
+    adj = np.zeros((n, n), np.uint8)
+    for v in range(n):
+        for i in range(off[v], off[v + 1]):
+            adj[v, nb[i]] = 1
+    sign = np.zeros(n, np.int64)
+    longest = np.empty(2, np.int64)
+    source = nb.astype(np.int64)
+    if not (
+        _orient(n, off, nb, adj, sign) and _trace_faces(n, off, nb, sign, longest) == 2 * n - 4
+    ):
+        third = np.full((n, n, 2), -1, np.int32)
+        _embed_triangulation(n, off, nb, adj, np.zeros(3, np.int64), third)
+        for v in range(n):  # walk the link of v: its neighbours in cyclic order
+            prev, cur = -1, nb[off[v]]
+            for i in range(off[v], off[v + 1]):
+                rot[i] = cur
+                nxt = third[v, cur, 0] if third[v, cur, 0] != prev else third[v, cur, 1]
+                prev, cur = cur, nxt
+        source[:] = rot
+        _orient(n, off, source, adj, sign)
+    for v in range(n):
+        d = off[v + 1] - off[v]
+        for i in range(d):
+            rot[off[v] + i] = source[off[v] + (i if sign[v] > 0 else d - 1 - i)]
+
+
+@njit
 def _validate(n, off, nb, adj, err):
     """Status of one grain, with the reason in ``err``; fills the n x n matrix ``adj``."""
     status = _check_lists(n, off, nb, err)
@@ -292,7 +322,7 @@ def _validate(n, off, nb, adj, err):
             err[0], err[1], err[2] = E_NON_SIMPLE, longest[0], longest[1]
             return NON_SIMPLE
     if edges == 3 * n - 6:
-        if _embed_triangulation(n, off, nb, adj, err):
+        if _embed_triangulation(n, off, nb, adj, err, np.full((n, n, 2), -1, np.int32)):
             return OK
         return INVALID
     if consistent:

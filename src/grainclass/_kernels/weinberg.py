@@ -16,24 +16,20 @@ as counter-clockwise seen from outside (the orientation of face 0's list for tex
 import numpy as np
 from numba import prange
 
-from grainclass._kernels.validate import _orient
+from grainclass._kernels.validate import _rotation
 from grainclass._numba import njit, njit_parallel
 
 
 @njit
-def _corners(n, off, nb, sign, rot, pos, corner, corner_nbr, left_face):
+def _corners(n, off, rot, pos, corner, corner_nbr, left_face):
     """The grain's edge graph: ``corner_nbr[T]`` = the 3 corners next to corner T, in
     counter-clockwise order, and ``left_face[T, k]`` the size of the grain face on the left of
     the edge T -> corner_nbr[T, k] (the face on its right is the left face of edge k + 1).
     Corners are the dual's triangles; returns their number.
 
-    ``sign`` (+1/-1 per face) orients the lists consistently; ``rot`` (darts), ``pos`` (n x n)
-    and ``corner`` (darts) are scratch.
+    ``rot`` holds the counter-clockwise rotation lists (``nb``'s layout); ``pos`` (n x n) and
+    ``corner`` (one per dart) are scratch.
     """
-    for v in range(n):
-        d = off[v + 1] - off[v]
-        for i in range(d):
-            rot[off[v] + i] = nb[off[v] + (i if sign[v] > 0 else d - 1 - i)]
     for v in range(n):
         for i in range(off[v], off[v + 1]):
             pos[v, rot[i]] = i - off[v]
@@ -168,18 +164,6 @@ def _weinberg(corner_nbr, left_face, t, best, stamp, label, used, code):
     return symmetry, chirality
 
 
-@njit
-def _oriented_signs(n, off, nb):
-    """Orientation of each face's list relative to face 0 (lists of an ok grain)."""
-    adj = np.zeros((n, n), np.uint8)
-    for v in range(n):
-        for i in range(off[v], off[v + 1]):
-            adj[v, nb[i]] = 1
-    sign = np.zeros(n, np.int64)
-    _orient(n, off, nb, adj, sign)
-    return sign
-
-
 @njit_parallel
 def _weinberg_batch(
     face_offsets,
@@ -214,7 +198,6 @@ def _weinberg_batch(
         label = np.empty(t_max, np.int64)
         used = np.zeros((t_max, 3), np.int64)
         code = np.empty(3 * t_max + 1, np.int32)
-        ones = np.ones(max_faces, np.int64)
         for g in range(block * n_grains // n_blocks, (block + 1) * n_grains // n_blocks):
             if not ok[g]:
                 continue
@@ -222,8 +205,11 @@ def _weinberg_batch(
             n = face_offsets[g + 1] - f0
             off = nbr_offsets[f0 : f0 + n + 1] - nbr_offsets[f0]
             nb = neighbors[nbr_offsets[f0] : nbr_offsets[f0 + n]]
-            sign = ones if consistent[g] else _oriented_signs(n, off, nb)
-            t = _corners(n, off, nb, sign, rot, pos, corner, corner_nbr, left_face)
+            if consistent[g]:
+                rot[: off[n]] = nb
+            else:  # orientation or order to recover: rare, allocates
+                _rotation(n, off, nb, rot[: off[n]])
+            t = _corners(n, off, rot, pos, corner, corner_nbr, left_face)
             best = codes[code_offsets[g] : code_offsets[g] + 3 * t + 1]
             stamp[:t] = 0
             used[:t] = 0

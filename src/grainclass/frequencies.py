@@ -1,0 +1,99 @@
+"""`type_frequencies`: how often each combinatorial type (Weinberg vector) occurs."""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+
+import pandas as pd
+import pyarrow as pa
+import pyarrow.compute as pc
+
+from grainclass import schema
+
+COLUMNS = [
+    schema.STATUS,
+    schema.WEINBERG,
+    schema.N_FACES,
+    schema.P_VECTOR,
+    schema.CLASS,
+    schema.SPLIT_K,
+    schema.SPLIT_M,
+    schema.PENALTY,
+    schema.SYMMETRY,
+    schema.CHIRALITY,
+]
+FIRST = [schema.N_FACES, schema.P_VECTOR, schema.CLASS, schema.SPLIT_K, schema.SPLIT_M]
+FIRST += [schema.PENALTY, schema.SYMMETRY]
+CHIRAL_COUNTS = {"left": -1, "achiral": 0, "right": 1}
+
+
+def _count_types(grains: pa.Table, n_faces: int | None, class_name: str | None) -> pd.DataFrame:
+    keep = pc.equal(grains.column(schema.STATUS), "ok")
+    if n_faces is not None:
+        keep = pc.and_(keep, pc.equal(grains.column(schema.N_FACES), n_faces))
+    if class_name is not None:
+        keep = pc.and_(keep, pc.equal(grains.column(schema.CLASS), class_name))
+    frame = grains.select(COLUMNS).filter(keep).to_pandas()
+    frame[schema.P_VECTOR] = [f"({','.join(map(str, p))})" for p in frame[schema.P_VECTOR]]
+    for name, sign in CHIRAL_COUNTS.items():
+        frame[name] = (frame[schema.CHIRALITY] == sign).astype("int64")
+    grouped = frame.groupby(schema.WEINBERG, sort=False, dropna=False)
+    counts = grouped[FIRST].first()
+    counts["count"] = grouped.size()
+    counts[list(CHIRAL_COUNTS)] = grouped[list(CHIRAL_COUNTS)].sum()
+    return counts
+
+
+def type_frequencies(
+    grains: pa.Table | Iterable[pa.Table],
+    n_faces: int | None = None,
+    class_name: str | None = None,
+    top: int | None = None,
+) -> pd.DataFrame:
+    """A frequency table of grain types, most frequent first.
+
+    Parameters
+    ----------
+    grains : pyarrow.Table or iterable of pyarrow.Table
+        Classified grains (at least the columns in ``COLUMNS``); only ok grains count.
+    n_faces, class_name : optional
+        Keep only grains with this number of faces, or of this class.
+    top : int, optional
+        Keep the ``top`` most frequent types.
+
+    Returns
+    -------
+    pandas.DataFrame
+        Columns ``weinberg, n_faces, p_vector, class, split, penalty, symmetry, count,
+        fraction`` and the chirality counts ``left, achiral, right``; ``split`` is ``k:m``
+        for flag grains. ``fraction`` is of all grains counted.
+    """
+    tables = [grains] if isinstance(grains, pa.Table) else grains
+    parts = [_count_types(table, n_faces, class_name) for table in tables]
+    if not parts:
+        return pd.DataFrame(columns=[schema.WEINBERG, *FIRST, "count", "fraction"])
+    both = pd.concat(parts)
+    grouped = both.groupby(level=0, sort=False)
+    table = grouped[FIRST].first()
+    table[["count", *CHIRAL_COUNTS]] = grouped[["count", *CHIRAL_COUNTS]].sum()
+    table["fraction"] = table["count"] / table["count"].sum()
+    split = table[schema.SPLIT_K].astype("Int64").astype(str) + ":"
+    split += table[schema.SPLIT_M].astype("Int64").astype(str)
+    table.insert(3, "split", split.where(table[schema.SPLIT_K].notna(), ""))
+    table = table.drop(columns=[schema.SPLIT_K, schema.SPLIT_M])
+    table[[schema.PENALTY, schema.SYMMETRY]] = table[[schema.PENALTY, schema.SYMMETRY]].astype(
+        "Int64"
+    )
+    table = table.reset_index().sort_values(
+        ["count", schema.WEINBERG], ascending=[False, True], kind="stable"
+    )
+    return table.head(top).reset_index(drop=True) if top else table.reset_index(drop=True)
+
+
+def vorotop_distribution(types: pd.DataFrame) -> str:
+    """VoroTop's ``.distribution`` layout: ``(code)<TAB>total<TAB>left<TAB>achiral<TAB>right``."""
+    lines = [
+        f"{row.weinberg}\t{row.count}\t{row.left}\t{row.achiral}\t{row.right}"
+        for row in types.itertuples(index=False)
+    ]
+    return "\n".join(lines) + ("\n" if lines else "")

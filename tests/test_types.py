@@ -1,0 +1,70 @@
+"""`grainclass types`: frequencies of combinatorial types."""
+
+from __future__ import annotations
+
+import itertools
+import json
+
+from click.testing import CliRunner
+
+from conftest import EXAMPLES
+from grainclass.cli import cli
+from test_weinberg import CUBE_CODE
+
+INPUTS = [str(EXAMPLES / "polytopes.txt"), str(EXAMPLES / "plantri-10.pc")]
+
+
+def _types(*args: str) -> list[dict]:
+    result = CliRunner().invoke(cli, ["types", *INPUTS, "--format", "json", *args])
+    assert result.exit_code == 0, result.output
+    return json.loads(result.stdout)
+
+
+def test_types_merges_equal_grains_and_sorts_by_count():
+    rows = _types()
+    # 233 triangulations with n = 10 plus 13 examples, of which the dodecahedron and the
+    # Weaire-Phelan dodecahedron are one type: 245 types, that one twice.
+    assert len(rows) == 245
+    top = rows[0]
+    assert (top["n_faces"], top["p_vector"], top["count"], top["symmetry"]) == (
+        12,
+        "(0,0,12)",
+        2,
+        120,
+    )
+    assert top["split"] == "0:8"
+    assert abs(sum(r["fraction"] for r in rows) - 1) < 1e-12
+    assert all(a["count"] >= b["count"] for a, b in itertools.pairwise(rows))
+
+
+def test_types_filters_and_top():
+    cube = _types("--n", "6")
+    assert [(r["weinberg"], r["class"], r["split"], r["penalty"]) for r in cube] == [
+        (CUBE_CODE, "flag", "1:1", 18)
+    ]
+    flags10 = _types("--n", "10", "--class", "flag")
+    assert len(flags10) == 10  # Table II: 10 flag triangulations with n = 10
+    assert len(_types("--top", "3")) == 3
+
+
+def test_types_writes_vorotop_distribution(tmp_path):
+    out = tmp_path / "grains.distribution"
+    result = CliRunner().invoke(
+        cli, ["types", *INPUTS, "--vorotop", str(out), "-o", str(tmp_path / "t.csv")]
+    )
+    assert result.exit_code == 0
+    lines = out.read_text().splitlines()
+    assert len(lines) == 245
+    code, total, left, achiral, right = lines[0].split("\t")
+    assert code.startswith("(1,2,3,4,5,1,")
+    assert (total, left, achiral, right) == (
+        "2",
+        "0",
+        "2",
+        "0",
+    )
+    assert all(
+        int(t) == int(a) + int(b) + int(c)
+        for t, a, b, c in (line.split("\t")[1:] for line in lines)
+    )
+    assert (tmp_path / "t.csv").read_text().startswith("weinberg,n_faces,p_vector,class,split")
