@@ -78,6 +78,11 @@ def _latex(table: pd.DataFrame) -> str:
     return "\n".join(lines)
 
 
+def _records(table: pd.DataFrame) -> list[dict]:
+    """JSON-ready rows, floats kept to 15 digits (pandas rounds to 10 by default)."""
+    return json.loads(table.to_json(orient="records", double_precision=15))
+
+
 def render_frame(table: pd.DataFrame, fmt: str, title: str) -> str | bytes:
     """One table on its own (``grainclass types``) in one of :data:`FORMATS`."""
     if fmt == "parquet":
@@ -85,7 +90,7 @@ def render_frame(table: pd.DataFrame, fmt: str, title: str) -> str | bytes:
         table.to_parquet(buffer, index=False)
         return buffer.getvalue()
     if fmt == "json":
-        return json.dumps(json.loads(table.to_json(orient="records", double_precision=15)), indent=2) + "\n"
+        return json.dumps(_records(table), indent=2) + "\n"
     if fmt == "csv":
         return table.to_csv(index=False)
     shown = table.astype(str).replace({"<NA>": "", "nan": "", "NaN": "", "None": ""})
@@ -110,7 +115,7 @@ def render(summary: Summary, tables: tuple[str, ...], fmt: str) -> str | bytes:
     if fmt == "json":
         payload: dict[str, object] = {"headline": summary.headline}
         for name in tables:
-            payload[name] = json.loads(summary.table(name).to_json(orient="records", double_precision=15))
+            payload[name] = _records(summary.table(name))
         return json.dumps(payload, indent=2) + "\n"
     parts = {"csv": [], "latex": [f"% {headline(summary)}"]}.get(fmt, [headline(summary)])
     for name in tables:
