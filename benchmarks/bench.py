@@ -18,6 +18,8 @@ import tempfile
 import time
 from pathlib import Path
 
+import numpy as np
+
 from grainclass.plantri import find_plantri
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -58,31 +60,90 @@ def bench_pipelines(sizes: list[int], work: Path) -> None:
         out.unlink(missing_ok=True)
 
 
+def _kernel_inputs(batch):
+    """The arrays ``classify`` hands to the kernels, for timing them alone."""
+    g = len(batch)
+    n_faces = batch.n_faces
+    tree_offsets = np.zeros(g + 1, np.int64)
+    np.cumsum(3 * n_faces, out=tree_offsets[1:])
+    code_offsets = np.zeros(g + 1, np.int64)
+    np.cumsum(6 * n_faces - 11, out=code_offsets[1:])
+    return {
+        "classify": (
+            batch.face_offsets,
+            batch.nbr_offsets,
+            batch.neighbors,
+            np.ones(g, bool),
+            64,
+            64,
+            np.zeros(g, np.int8),
+            np.zeros(g, bool),
+            np.zeros((g, 3), np.int64),
+            np.zeros(g, np.int8),
+            np.zeros(g, np.int32),
+            np.zeros(g, np.int32),
+            np.zeros(g, np.int32),
+            np.zeros((g, 3), np.int64),
+            tree_offsets,
+            np.zeros(int(tree_offsets[-1]), np.uint8),
+            np.zeros(g, np.int64),
+        ),
+        "weinberg": (
+            batch.face_offsets,
+            batch.nbr_offsets,
+            batch.neighbors,
+            np.ones(g, bool),
+            np.ones(g, bool),
+            int(n_faces.max()),
+            64,
+            code_offsets,
+            np.zeros(int(code_offsets[-1]), np.int32),
+            np.zeros(g, np.int32),
+            np.zeros(g, np.int8),
+        ),
+    }
+
+
 def bench_kernel(sizes: list[int], work: Path) -> None:
     import numba
 
+    from grainclass._kernels.batch import _classify_batch
+    from grainclass._kernels.weinberg import _weinberg_batch
     from grainclass.classification import classify
     from grainclass.readers import read_dataset
 
     plantri = find_plantri()
-    print("(b) kernel + columns only, in process (grains/s)")
+    print(
+        "(b) in process, M grains/s: classification kernel | Weinberg kernel | classify() | "
+        "classify(types=False)"
+    )
     for n in sizes:
         path = work / f"p{n}.pc"
         subprocess.run([plantri, str(n), str(path)], check=True, capture_output=True)
         batches = []
         for batch in read_dataset(str(path), chunk_size=100_000):
             batches.append(batch)
-            if sum(len(b) for b in batches) >= 2_000_000:
+            if sum(len(b) for b in batches) >= 1_000_000:
                 break
         grains = sum(len(b) for b in batches)
+        inputs = [_kernel_inputs(b) for b in batches]
         classify(batches[0])
         for threads in sorted({1, numba.config.NUMBA_NUM_THREADS}):
             numba.set_num_threads(threads)
-            start = time.perf_counter()
-            for batch in batches:
-                classify(batch)
-            rate = grains / (time.perf_counter() - start)
-            print(f"    n={n}: {threads} thread(s): {rate / 1e6:5.2f} M grains/s over {grains:,}")
+            rates = []
+            for run in (
+                lambda inputs=inputs: [_classify_batch(*i["classify"]) for i in inputs],
+                lambda inputs=inputs: [_weinberg_batch(*i["weinberg"]) for i in inputs],
+                lambda batches=batches: [classify(b) for b in batches],
+                lambda batches=batches: [classify(b, types=False) for b in batches],
+            ):
+                start = time.perf_counter()
+                run()
+                rates.append(grains / (time.perf_counter() - start) / 1e6)
+            print(
+                f"    n={n}, {threads} thread(s), {grains:,} grains: "
+                + " | ".join(f"{r:5.2f}" for r in rates)
+            )
         path.unlink()
 
 

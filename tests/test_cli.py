@@ -105,7 +105,7 @@ def test_interrupted_writer_leaves_no_file(tmp_path):
 
 
 def test_ctrl_c_exits_130(monkeypatch, tmp_path, capsys):
-    def interrupted(batch):
+    def interrupted(batch, types=True):
         raise KeyboardInterrupt
 
     monkeypatch.setattr("grainclass.pipeline.classify", interrupted)
@@ -268,3 +268,29 @@ def test_classify_output_gets_ordinary_file_permissions(runner, tmp_path):
     umask = os.umask(0)
     os.umask(umask)
     assert out.stat().st_mode & 0o777 == 0o666 & ~umask
+
+
+def test_no_types_leaves_weinberg_null_and_the_rest_equal(runner, tmp_path):
+    full, out_full = _classify(runner, tmp_path, EXAMPLES / "polytopes.txt")
+    plain = runner.invoke(
+        cli,
+        [
+            "classify",
+            str(EXAMPLES / "polytopes.txt"),
+            "-o",
+            str(tmp_path / "p.parquet"),
+            "--no-types",
+        ],
+    )
+    assert full.exit_code == plain.exit_code == 0
+    with_types = pq.read_table(out_full)
+    without = pq.read_table(tmp_path / "p.parquet")
+    assert without.column("weinberg").null_count == without.num_rows
+    assert without.drop_columns(["weinberg", "symmetry", "chirality"]).equals(
+        with_types.drop_columns(["weinberg", "symmetry", "chirality"])
+    )
+    summary = runner.invoke(cli, ["summarize", str(tmp_path / "p.parquet")])
+    assert summary.stdout.splitlines()[0].endswith("types not computed")
+    assert (
+        runner.invoke(cli, ["types", str(EXAMPLES / "polytopes.txt"), "--no-types"]).exit_code == 2
+    )

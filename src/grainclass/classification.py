@@ -82,7 +82,9 @@ def _float_column(values: np.ndarray | None, length: int) -> pa.Array:
     return pa.array(values, pa.float64(), from_pandas=True)
 
 
-def classify(batch: GrainBatch, max_bitset_faces: int = MAX_BITSET_FACES) -> pa.Table:
+def classify(
+    batch: GrainBatch, max_bitset_faces: int = MAX_BITSET_FACES, types: bool = True
+) -> pa.Table:
     """Classify every grain of a batch (Lutz et al., Secs. II-III and App. B).
 
     Parameters
@@ -92,6 +94,9 @@ def classify(batch: GrainBatch, max_bitset_faces: int = MAX_BITSET_FACES) -> pa.
     max_bitset_faces : int
         Grains with at most this many faces (64 at most) may take the fast bitset path; 0 sends
         every grain through the general path (the tests compare the two).
+    types : bool
+        Compute the ``weinberg``, ``symmetry`` and ``chirality`` columns (null when False):
+        the Weinberg walks cost several times the rest of the classification.
 
     Returns
     -------
@@ -159,24 +164,26 @@ def classify(batch: GrainBatch, max_bitset_faces: int = MAX_BITSET_FACES) -> pa.
     p_offsets, p_counts, triangles = _p_vectors(batch.face_offsets, batch.nbr_offsets, ok)
     trees = string_array(*_compact(tree_offsets, tree_bytes, tree_length), has_trees)
     split_k = belts[:, 0]
+    with_type = ok & types
     code_offsets = np.zeros(g + 1, np.int64)
-    np.cumsum(np.where(ok, 6 * n_faces - 11, 0), out=code_offsets[1:])
+    np.cumsum(np.where(with_type, 6 * n_faces - 11, 0), out=code_offsets[1:])
     weinberg = np.zeros(int(code_offsets[-1]), np.int32)
     symmetry = np.zeros(g, np.int32)
     chirality = np.zeros(g, np.int8)
-    _weinberg_batch(
-        batch.face_offsets,
-        batch.nbr_offsets,
-        batch.neighbors,
-        ok,
-        consistent,
-        int(n_faces.max()) if g else 0,
-        n_blocks,
-        code_offsets,
-        weinberg,
-        symmetry,
-        chirality,
-    )
+    if types:
+        _weinberg_batch(
+            batch.face_offsets,
+            batch.nbr_offsets,
+            batch.neighbors,
+            ok,
+            consistent,
+            int(n_faces.max()) if g else 0,
+            n_blocks,
+            code_offsets,
+            weinberg,
+            symmetry,
+            chirality,
+        )
     volume, area = batch.volume, batch.area
     isoperimetric = None
     if volume is not None and area is not None:
@@ -217,9 +224,9 @@ def classify(batch: GrainBatch, max_bitset_faces: int = MAX_BITSET_FACES) -> pa.
         schema.SPLIT_M: _nullable(n_faces - 4 - split_k, is_flag, pa.int32()),
         schema.BELTS4: _nullable(belts[:, 1], is_flag, pa.int32()),
         schema.PENALTY: _nullable(n_faces * belts[:, 2], is_flag, pa.int64()),
-        schema.WEINBERG: string_array(*_code_strings(weinberg, code_offsets, ok), ok),
-        schema.SYMMETRY: _nullable(symmetry, ok, pa.int32()),
-        schema.CHIRALITY: _nullable(chirality, ok, pa.int8()),
+        schema.WEINBERG: string_array(*_code_strings(weinberg, code_offsets, with_type), with_type),
+        schema.SYMMETRY: _nullable(symmetry, with_type, pa.int32()),
+        schema.CHIRALITY: _nullable(chirality, with_type, pa.int8()),
         schema.VOLUME: _float_column(volume, g),
         schema.AREA: _float_column(area, g),
         schema.ISOPERIMETRIC: _float_column(isoperimetric, g),

@@ -66,10 +66,11 @@ def classified_tables(
     format: str | None = None,
     chunk_size: int = DEFAULT_CHUNK_SIZE,
     triple_edges: tuple[str, str] = DEFAULT_TRIPLE_EDGES,
+    types: bool = True,
 ) -> Iterator[pa.Table]:
     """Per-grain tables for every batch of the inputs, in input order."""
     for batch in prefetch(read_dataset(paths, format, chunk_size, triple_edges)):
-        yield classify(batch)
+        yield classify(batch, types=types)
 
 
 def is_parquet(path: str) -> bool:
@@ -89,6 +90,7 @@ def grain_tables(
     format: str | None = None,
     chunk_size: int = DEFAULT_CHUNK_SIZE,
     triple_edges: tuple[str, str] = DEFAULT_TRIPLE_EDGES,
+    types: bool = True,
 ) -> Iterator[pa.Table]:
     """Per-grain tables from classified Parquet files or, for any other input, classified now."""
     from grainclass.parquet import iter_grain_tables
@@ -97,7 +99,7 @@ def grain_tables(
         if is_parquet(path):
             yield from iter_grain_tables(path, columns)
         else:
-            for table in classified_tables([path], format, chunk_size, triple_edges):
+            for table in classified_tables([path], format, chunk_size, triple_edges, types):
                 yield table.select(columns)
 
 

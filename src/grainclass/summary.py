@@ -30,7 +30,7 @@ COUNT, TRIANGLES = "count", "triangles"
 class Summary:
     """The headline figures and the three tables of :func:`summarize`."""
 
-    headline: dict[str, float | int]
+    headline: dict[str, float | int | None]
     classes: pd.DataFrame
     round: pd.DataFrame
     split: pd.DataFrame
@@ -76,7 +76,7 @@ def type_hashes(grains: pa.Table) -> np.ndarray:
     return _fnv1a(starts, np.frombuffer(data, np.uint8))
 
 
-def _headline(counts: pd.DataFrame, distinct_types: int) -> dict[str, float | int]:
+def _headline(counts: pd.DataFrame, distinct_types: int | None) -> dict[str, float | int | None]:
     ok = _ok(counts)
     by_status = counts.groupby(schema.STATUS)[COUNT].sum()
     grains = int(ok[COUNT].sum())
@@ -177,7 +177,8 @@ def summarize(grains: pa.Table | Iterable[pa.Table], n_values: tuple[int, ...] =
         tallies.append(tally(table))
         hashes.append(type_hashes(table))
     counts = merge_tallies(tallies)
-    distinct = np.unique(np.concatenate(hashes)).size if hashes else 0
+    # None when no grain carries a Weinberg vector (classified with --no-types, or none ok).
+    distinct = np.unique(np.concatenate(hashes)).size if any(h.size for h in hashes) else None
     return Summary(
         headline=_headline(counts, distinct),
         classes=class_counts(counts),
