@@ -46,17 +46,20 @@ def _quote(text: str) -> str:
 def bench_pipelines(sizes: list[int], work: Path) -> None:
     plantri = find_plantri()
     gc = " ".join(GRAINCLASS)
-    print("(a) plantri N alone, | classify - -o out.parquet, | summarize -  (wall s, peak MB)")
+    out = work / "out.parquet"
+    runs = {
+        "classify": f"{gc} classify - -o {out} -q",
+        "classify --no-types": f"{gc} classify - -o {out} -q --no-types",
+        "summarize": f"{gc} summarize - -q > /dev/null",
+        "summarize --no-types": f"{gc} summarize - -q --no-types > /dev/null",
+    }
+    print("(a) plantri N > /dev/null against plantri N | grainclass ...: wall s, ratio, peak MB")
     for n in sizes:
         alone, mem_alone = timed(f"{plantri} {n} > /dev/null 2>&1")
-        out = work / f"all{n}.parquet"
-        classify, mem_c = timed(f"{plantri} {n} 2>/dev/null | {gc} classify - -o {out} -q")
-        summarize, mem_s = timed(f"{plantri} {n} 2>/dev/null | {gc} summarize - -q > /dev/null")
-        print(
-            f"    n={n}: plantri {alone:6.2f} s ({mem_alone:5.0f} MB) | "
-            f"classify {classify:6.2f} s ({mem_c:5.0f} MB) ratio {classify / alone:4.2f} | "
-            f"summarize {summarize:6.2f} s ({mem_s:5.0f} MB) ratio {summarize / alone:4.2f}"
-        )
+        print(f"    n={n}: plantri alone {alone:6.2f} s ({mem_alone:.0f} MB)")
+        for name, command in runs.items():
+            seconds, mem = timed(f"{plantri} {n} 2>/dev/null | {command}")
+            print(f"        | {name:21s} {seconds:6.2f} s  x{seconds / alone:5.2f}  {mem:5.0f} MB")
         out.unlink(missing_ok=True)
 
 
