@@ -112,3 +112,31 @@ def test_bitset_path_equals_general_path_on_every_triangulation(plantri_output, 
 def test_bitset_path_equals_general_path_on_random_triangulations(grains):
     batch = GrainBatch.from_lists(grains)
     assert classify(batch).equals(classify(batch, max_bitset_faces=0))
+
+
+@pytest.mark.parametrize("n", [10, 11])
+def test_classify_agrees_with_oracle_on_every_triangulation_with_10_and_11_faces(plantri_output, n):
+    graphs = _read_planar_code(plantri_output(n).read_bytes())
+    for lists, row in zip(graphs, _classify(graphs), strict=True):
+        assert row == reference.classify(lists) | {"status": "ok"}
+
+
+def test_parallel_equals_serial(plantri_output):
+    import numba
+
+    batch = next(read_dataset(str(plantri_output(11)), chunk_size=10**6))
+    threads = numba.get_num_threads()
+    try:
+        numba.set_num_threads(1)
+        serial = classify(batch)
+    finally:
+        numba.set_num_threads(threads)
+    assert classify(batch).equals(serial)
+
+
+def test_chunk_size_1_equals_chunk_size_100000(plantri_output):
+    import pyarrow as pa
+
+    path = str(plantri_output(8))
+    one = pa.concat_tables(classify(b) for b in read_dataset(path, chunk_size=1))
+    assert one.equals(pa.concat_tables(classify(b) for b in read_dataset(path, chunk_size=100_000)))
