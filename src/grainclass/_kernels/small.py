@@ -12,6 +12,22 @@ from grainclass._numba import njit
 
 
 @njit
+def _component(adj, start, allowed):
+    """The vertices of ``allowed`` reachable from the bitset ``start`` within ``allowed``."""
+    comp = start
+    frontier = start
+    while frontier:
+        reached = ZERO
+        while frontier:
+            x = lowest(frontier)
+            frontier &= frontier - ONE
+            reached |= adj[x]
+        frontier = reached & allowed & ~comp
+        comp |= frontier
+    return comp
+
+
+@njit
 def _validate_small(n, nbr_offsets, neighbors, f0, adj, following):
     """True if grain (faces from ``f0``) is certainly a simple grain with consistent cyclic lists.
 
@@ -37,16 +53,7 @@ def _validate_small(n, nbr_offsets, neighbors, f0, adj, following):
             following[v, x] = y
             x = y
         adj[v] = row
-    seen, frontier = ONE, ONE
-    while frontier:
-        reached = ZERO
-        while frontier:
-            x = lowest(frontier)
-            frontier &= frontier - ONE
-            reached |= adj[x]
-        frontier = reached & ~seen
-        seen |= reached
-    if seen != full(n):
+    if _component(adj, ONE, full(n)) != full(n):
         return False
     for v in range(n):
         s, e = nbr_offsets[f0 + v], nbr_offsets[f0 + v + 1]
@@ -126,22 +133,6 @@ def _parents_small(n, alive, removed_round, link, parent):
 
 
 @njit
-def _side_size_small(adj, allowed):
-    """Size of the component of the lowest vertex of ``allowed`` within ``allowed``."""
-    comp = bit(lowest(allowed))
-    frontier = comp
-    while frontier:
-        reached = ZERO
-        while frontier:
-            x = lowest(frontier)
-            frontier &= frontier - ONE
-            reached |= adj[x]
-        frontier = reached & allowed & ~comp
-        comp |= frontier
-    return popcount(comp)
-
-
-@njit
 def _four_belts_small(n, adj, out):
     """As ``belts._four_belts``: chordless 4-cycles a-b-c-d, each found once from its smallest
     vertex a; writes ``out = (split_k, belts, sum of k * (n - k - 4))``.
@@ -162,7 +153,8 @@ def _four_belts_small(n, adj, out):
                     d = lowest(ds)
                     ds &= ds - ONE
                     belt = bit(a) | bit(b) | bit(c) | bit(d)
-                    side = _side_size_small(adj, everything & ~belt)
+                    rest = everything & ~belt
+                    side = popcount(_component(adj, bit(lowest(rest)), rest))
                     k = min(side, n - 4 - side)
                     belts += 1
                     weight += k * (n - 4 - k)
