@@ -4,7 +4,7 @@ VENV ?= .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed-stamp
 
-.PHONY: all install demo test test-nojit lint bench reproduce-enumeration clean
+.PHONY: all install demo test test-nojit lint bench reproduce-enumeration reproduce-voronoi clean
 
 all: lint test
 
@@ -39,6 +39,10 @@ bench: install
 # The paper's Table II, split-type table and all* round rows for n = 13 and 14 (a few minutes).
 reproduce-enumeration: install
 	$(BIN)/python scripts/reproduce_enumeration.py
+
+# A fresh V-268402-like Poisson-Voronoi data set against the paper's V tables (a few minutes).
+reproduce-voronoi: install
+	$(BIN)/python scripts/reproduce_voronoi.py
 
 clean:
 	rm -rf build .pytest_cache

@@ -36,6 +36,9 @@ class GrainBatch:
         Why a grain could not be read (it then has no faces), by position in the batch.
     volume, area : numpy.ndarray of float64, shape (G,), optional
         Grain volume and surface area where the input gives them (NaN where it does not).
+    boundary : numpy.ndarray of int8, shape (G,), optional
+        1 for grains cut by a non-periodic sample boundary, 0 for grains that are not, -1 where
+        the input does not tell.
     attributes : dict of str to list of (str or None)
         Further ``key=value`` fields of the input, kept as string columns.
     """
@@ -49,6 +52,7 @@ class GrainBatch:
     neighbors: np.ndarray
     volume: np.ndarray | None = None
     area: np.ndarray | None = None
+    boundary: np.ndarray | None = None
     parse_errors: dict[int, str] = field(default_factory=dict)
     attributes: dict[str, list[str | None]] = field(default_factory=dict)
 

@@ -200,6 +200,11 @@ def classify(
             if isinstance(batch.source, str)
             else pa.array(batch.source, pa.string())
         ),
+        schema.BOUNDARY: (
+            pa.nulls(g, pa.bool_())
+            if batch.boundary is None
+            else pa.array(batch.boundary == 1, pa.bool_(), mask=batch.boundary < 0)
+        ),
         schema.STATUS: strings_from_codes(status, codes.STATUS_NAMES),
         schema.ERROR: (
             pa.nulls(g, pa.string())

@@ -5,22 +5,20 @@ An interrupted run therefore never leaves a half-written file under the requeste
 
 from __future__ import annotations
 
-import os
-import sys
-import tempfile
 from collections.abc import Iterator
+from contextlib import ExitStack
 from types import TracebackType
 from typing import BinaryIO
 
 import pyarrow as pa
 import pyarrow.parquet as pq
 
-from grainclass.errors import OutputError
+from grainclass.atomic import atomic_output
 from grainclass.schema import GRAIN_SCHEMA
 
 
 class GrainTableWriter:
-    """Context manager that writes per-grain tables into one Parquet file.
+    """Context manager that writes per-grain tables into one Parquet file, atomically.
 
     The first table fixes the columns (the grain schema plus the input's extra attributes).
     Later tables get nulls for attributes they lack; attributes first seen after the first
@@ -39,23 +37,11 @@ class GrainTableWriter:
         self.dropped: set[str] = set()
         self._writer: pq.ParquetWriter | None = None
         self._schema: pa.Schema | None = None
+        self._stack = ExitStack()
         self._sink: BinaryIO | None = None
-        self._tmp: str | None = None
 
     def __enter__(self) -> GrainTableWriter:
-        if self.path == "-":
-            if sys.stdout.isatty():
-                raise OutputError("refusing to write Parquet to a terminal; use -o FILE")
-            self._sink = sys.stdout.buffer
-            return self
-        directory = os.path.dirname(os.path.abspath(self.path))
-        try:
-            fd, self._tmp = tempfile.mkstemp(
-                prefix=f".{os.path.basename(self.path)}.", suffix=".tmp", dir=directory
-            )
-        except OSError as exc:
-            raise OutputError(f"{self.path}: cannot write here ({exc.strerror})") from None
-        self._sink = os.fdopen(fd, "wb")
+        self._sink = self._stack.enter_context(atomic_output(self.path, binary_stdout_ok=False))
         return self
 
     def write(self, table: pa.Table) -> None:
@@ -87,22 +73,10 @@ class GrainTableWriter:
         try:
             if exc_type is None and self._writer is None:
                 self._open(GRAIN_SCHEMA)  # no grains at all: still a valid, empty table
-            if self._writer is not None:
+            if self._writer is not None:  # also on failure: the temporary file goes anyway
                 self._writer.close()
-            if self._tmp is not None and self._sink is not None:
-                self._sink.close()
-            elif self._sink is not None:
-                self._sink.flush()
         finally:
-            if self._tmp is not None:
-                if exc_type is None:
-                    # mkstemp makes the file private; give it the permissions open() would.
-                    umask = os.umask(0)
-                    os.umask(umask)
-                    os.chmod(self._tmp, 0o666 & ~umask)
-                    os.replace(self._tmp, self.path)
-                elif os.path.exists(self._tmp):
-                    os.unlink(self._tmp)
+            self._stack.__exit__(exc_type, exc, tb)
 
 
 def iter_grain_tables(path: str, columns: list[str]) -> Iterator[pa.Table]:

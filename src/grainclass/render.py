@@ -23,6 +23,8 @@ TITLES = {
     "classes": "Grains by number of faces n and class (the paper's Tables II, V, R, E)",
     "round": "Percent of ok grains in round<=k and in the sc family (the paper's round table)",
     "split": "flag grains by number of faces n and split type k:m (m = n-4-k)",
+    "geometry": "Mean isoperimetric quotient Q of ok grains, with its standard error, by n and by "
+    "round_k",
 }
 
 
@@ -35,6 +37,11 @@ def headline(summary: Summary) -> str:
         f"mean faces per grain {h['mean_faces']:.3f}; "
         f"triangles {h['triangle_faces_percent']:.2f}% of faces; "
         + (f"{h['types']} distinct types" if h["types"] is not None else "types not computed")
+        + (
+            f"; {h['boundary_excluded']} boundary grains left out"
+            if h.get("boundary_excluded")
+            else ""
+        )
     )
 
 
@@ -45,6 +52,11 @@ def _display(summary: Summary, name: str) -> pd.DataFrame:
         shown = table.copy()
         for column in shown.columns[2:]:
             shown[column] = shown[column].map(lambda x: "" if math.isnan(x) else f"{x:.2f}")
+        return shown.astype(str)
+    if name == "geometry":
+        shown = table.copy()
+        for column in ("mean_Q", "se_Q"):
+            shown[column] = shown[column].map(lambda x: "" if math.isnan(x) else f"{x:.4f}")
         return shown.astype(str)
     if name == "split":
         shown = table.astype(str)

@@ -2,10 +2,11 @@
 
 import pyarrow as pa
 
-SCHEMA_VERSION = "2"
+SCHEMA_VERSION = "3"
 
 GRAIN_ID = "grain_id"
 SOURCE = "source"
+BOUNDARY = "boundary"
 STATUS = "status"
 ERROR = "error"
 N_FACES = "n_faces"
@@ -33,6 +34,7 @@ GRAIN_SCHEMA = pa.schema(
     [
         (GRAIN_ID, pa.string()),
         (SOURCE, pa.string()),
+        (BOUNDARY, pa.bool_()),
         (STATUS, pa.string()),
         (ERROR, pa.string()),
         (N_FACES, pa.int32()),

@@ -20,10 +20,13 @@ KEYS = [
     schema.ROUND_K,
     schema.SPLIT_K,
 ]
-COLUMNS = [*KEYS, schema.N_TRIANGLES, schema.WEINBERG]
+COLUMNS = [*KEYS, schema.N_TRIANGLES, schema.WEINBERG, schema.ISOPERIMETRIC, schema.BOUNDARY]
 ROUND_LEVELS = range(7)
-TABLES = ("classes", "round", "split")
+TABLES = ("classes", "round", "split")  # printed by default; "geometry" on request
+ALL_TABLES = (*TABLES, "geometry")
 COUNT, TRIANGLES = "count", "triangles"
+Q_COUNT, Q_SUM, Q_SQUARES = "q_count", "q_sum", "q_squares"
+SUMS = [COUNT, TRIANGLES, Q_COUNT, Q_SUM, Q_SQUARES]
 
 
 @dataclass(frozen=True)
@@ -34,10 +37,11 @@ class Summary:
     classes: pd.DataFrame
     round: pd.DataFrame
     split: pd.DataFrame
+    geometry: pd.DataFrame
 
     def table(self, name: str) -> pd.DataFrame:
-        """One of ``classes``, ``round``, ``split``."""
-        return {"classes": self.classes, "round": self.round, "split": self.split}[name]
+        """One of ``classes``, ``round``, ``split``, ``geometry``."""
+        return getattr(self, name)
 
 
 def tally(grains: pa.Table) -> pd.DataFrame:
@@ -46,9 +50,30 @@ def tally(grains: pa.Table) -> pd.DataFrame:
     Every table of the paper is a sum over these groups, so a stream of batches can be summarized
     in bounded memory: tally each batch, then :func:`merge_tallies`.
     """
-    grouped = grains.select([*KEYS, schema.N_TRIANGLES]).group_by(KEYS, use_threads=False)
-    counts = grouped.aggregate([(schema.N_TRIANGLES, "sum"), ([], "count_all")]).to_pandas()
-    return counts.rename(columns={f"{schema.N_TRIANGLES}_sum": TRIANGLES, "count_all": COUNT})
+    q = grains.column(schema.ISOPERIMETRIC)
+    table = (
+        grains.select([*KEYS, schema.N_TRIANGLES])
+        .append_column("q", q)
+        .append_column("q2", pc.multiply(q, q))
+    )
+    grouped = table.group_by(KEYS, use_threads=False)
+    counts = grouped.aggregate(
+        [
+            (schema.N_TRIANGLES, "sum"),
+            ([], "count_all"),
+            ("q", "count"),
+            ("q", "sum"),
+            ("q2", "sum"),
+        ]
+    ).to_pandas()
+    names = {
+        f"{schema.N_TRIANGLES}_sum": TRIANGLES,
+        "count_all": COUNT,
+        "q_count": Q_COUNT,
+        "q_sum": Q_SUM,
+        "q2_sum": Q_SQUARES,
+    }
+    return counts.rename(columns=names)
 
 
 def merge_tallies(tallies: list[pd.DataFrame]) -> pd.DataFrame:
@@ -56,7 +81,7 @@ def merge_tallies(tallies: list[pd.DataFrame]) -> pd.DataFrame:
     if not tallies:
         return tally(pa.Table.from_pylist([], schema=schema.GRAIN_SCHEMA))
     both = pd.concat(tallies, ignore_index=True)
-    return both.groupby(KEYS, dropna=False, as_index=False)[[COUNT, TRIANGLES]].sum(min_count=0)
+    return both.groupby(KEYS, dropna=False, as_index=False)[SUMS].sum(min_count=0)
 
 
 def _ok(counts: pd.DataFrame) -> pd.DataFrame:
@@ -148,7 +173,39 @@ def split_counts(counts: pd.DataFrame) -> pd.DataFrame:
     return table.reset_index().astype("int64")
 
 
-def summarize(grains: pa.Table | Iterable[pa.Table], n_values: tuple[int, ...] = ()) -> Summary:
+def geometry_table(counts: pd.DataFrame) -> pd.DataFrame:
+    """Mean isoperimetric quotient Q = 36 pi V^2 / S^3 of ok grains, with its standard error,
+    per number of faces and per round_k (the paper's figures on isoperimetricity)."""
+    ok = _ok(counts).copy()
+    ok["round"] = (
+        ok[schema.ROUND_K].astype("Int64").astype(str).where(ok[schema.FAMILY] != "sc", "sc")
+    )
+    rows = []
+    for by, column in ((schema.N_FACES, schema.N_FACES), (schema.ROUND_K, "round")):
+        sums = ok.groupby(column)[[Q_COUNT, Q_SUM, Q_SQUARES]].sum()
+        order = sorted(sums.index, key=lambda v: (str(v) == "sc", int(v) if str(v) != "sc" else 0))
+        for value, (count, total, squares) in sums.loc[order].iterrows():
+            if count == 0:
+                continue
+            mean = total / count
+            variance = (squares - count * mean**2) / (count - 1) if count > 1 else np.nan
+            rows.append(
+                {
+                    "by": by,
+                    "value": str(value),
+                    "grains": int(count),
+                    "mean_Q": mean,
+                    "se_Q": float(np.sqrt(max(variance, 0.0) / count)),
+                }
+            )
+    return pd.DataFrame(rows, columns=["by", "value", "grains", "mean_Q", "se_Q"])
+
+
+def summarize(
+    grains: pa.Table | Iterable[pa.Table],
+    n_values: tuple[int, ...] = (),
+    include_boundary: bool = False,
+) -> Summary:
     """Summarize classified grains into the paper's tables.
 
     Parameters
@@ -158,6 +215,9 @@ def summarize(grains: pa.Table | Iterable[pa.Table], n_values: tuple[int, ...] =
         iterable is consumed one table at a time, so a stream of batches needs little memory.
     n_values : tuple of int
         Numbers of faces for which the round table gets a row of its own.
+    include_boundary : bool
+        Count grains cut by a sample boundary too (they are left out by default: their faces
+        there are cuts, not grain boundaries).
 
     Returns
     -------
@@ -173,15 +233,23 @@ def summarize(grains: pa.Table | Iterable[pa.Table], n_values: tuple[int, ...] =
     """
     tables = [grains] if isinstance(grains, pa.Table) else grains
     tallies, hashes = [], []
+    excluded = 0
     for table in tables:
+        if not include_boundary and schema.BOUNDARY in table.column_names:
+            cut = pc.fill_null(table.column(schema.BOUNDARY), False)
+            excluded += pc.sum(cut).as_py() or 0
+            table = table.filter(pc.invert(cut))
         tallies.append(tally(table))
         hashes.append(type_hashes(table))
     counts = merge_tallies(tallies)
     # None when no grain carries a Weinberg vector (classified with --no-types, or none ok).
     distinct = np.unique(np.concatenate(hashes)).size if any(h.size for h in hashes) else None
+    headline = _headline(counts, distinct)
+    headline["boundary_excluded"] = int(excluded)
     return Summary(
-        headline=_headline(counts, distinct),
+        headline=headline,
         classes=class_counts(counts),
         round=round_percentages(counts, tuple(n_values)),
         split=split_counts(counts),
+        geometry=geometry_table(counts),
     )

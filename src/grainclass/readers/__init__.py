@@ -18,9 +18,11 @@ from grainclass.batch import GrainBatch
 from grainclass.errors import InputError
 from grainclass.readers.adjacency import read_adjacency
 from grainclass.readers.evolver import DEFAULT_TRIPLE_EDGES, read_evolver
+from grainclass.readers.loops import read_loops
 from grainclass.readers.planar_code import read_planar_code
+from grainclass.readers.voro import looks_like_voro, read_voro
 
-FORMATS = ("adjacency", "planar_code", "evolver")
+FORMATS = ("adjacency", "planar_code", "evolver", "voro", "loops")
 _EVOLVER = re.compile(rb"(?im)^\s*(vertices|torus_filled|torus|periods)\s*(//.*)?$")
 DEFAULT_CHUNK_SIZE = 50_000
 
@@ -36,11 +38,17 @@ def sniff(head: bytes) -> str:
     'adjacency'
     >>> sniff(b"// a foam\\nvertices\\n1 0 0 0\\n")
     'evolver'
+    >>> sniff(b"7 0.0351 (1,3,2) (1,5,4,3)\\n")
+    'voro'
+
+    Face-vertex-loop text looks like adjacency text: it is read only with ``--format loops``.
     """
     if head.startswith(b">>planar_code") or b"\x00" in head:
         return "planar_code"
     if _EVOLVER.search(head):
         return "evolver"
+    if looks_like_voro(head):
+        return "voro"
     return "adjacency"
 
 
@@ -115,8 +123,9 @@ def read_dataset(
     ----------
     paths : str or sequence of str
         Files to read; ``-`` is standard input; a folder stands for its ``*.fe`` files.
-    format : {None, "adjacency", "planar_code", "evolver"}
-        The input format; None sniffs it from each input (``.fe`` files are Surface Evolver).
+    format : {None, "adjacency", "planar_code", "evolver", "voro", "loops"}
+        The input format; None sniffs it from each input (``.fe`` files are Surface Evolver;
+        face-vertex-loop text must be named, it looks like adjacency text).
     chunk_size : int
         Grains per batch at most.
     triple_edges : (str, str)
@@ -155,6 +164,10 @@ def read_dataset(
                     raise InputError(path, "Surface Evolver input must be a file or a folder")
                 if fmt == "planar_code":
                     yield from read_planar_code(stream, path, chunk_size)
+                elif fmt == "voro":
+                    yield from read_voro(stream, path, chunk_size)
+                elif fmt == "loops":
+                    yield from read_loops(stream, path, chunk_size)
                 else:
                     yield from read_adjacency(stream, path, chunk_size)
             except OSError as exc:

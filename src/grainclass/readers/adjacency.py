@@ -15,6 +15,7 @@ import numpy as np
 from grainclass.batch import GrainBatch
 
 FLOAT_KEYS = ("volume", "area")
+BOOLEANS = {"1": 1, "true": 1, "yes": 1, "0": 0, "false": 0, "no": 0}
 
 
 class _Chunk:
@@ -29,6 +30,7 @@ class _Chunk:
         self.neighbors: list[int] = []
         self.parse_errors: dict[int, str] = {}
         self.floats: dict[str, list[float]] = {key: [] for key in FLOAT_KEYS}
+        self.boundary: list[int] = []
         self.attributes: dict[str, list[str | None]] = {}
 
     def __len__(self) -> int:
@@ -48,13 +50,17 @@ class _Chunk:
                     raise ValueError(f"field {text!r} is not key=value")
                 values[key.strip()] = value.strip()
             floats = {key: float(values.pop(key, "nan")) for key in FLOAT_KEYS}
+            flag = values.pop("boundary", None)
+            if flag is not None and flag.lower() not in BOOLEANS:
+                raise ValueError(f"boundary={flag!r}: expected 1/0, true/false or yes/no")
+            boundary = -1 if flag is None else BOOLEANS[flag.lower()]
         except ValueError as exc:
             self.add_unreadable(line_no, grain_id, str(exc))
             return
-        self._append(line_no, grain_id, faces, floats, values, None)
+        self._append(line_no, grain_id, faces, floats, boundary, values, None)
 
     def add_unreadable(self, line_no: int, grain_id: str, error: str) -> None:
-        self._append(line_no, grain_id, [], dict.fromkeys(FLOAT_KEYS, np.nan), {}, error)
+        self._append(line_no, grain_id, [], dict.fromkeys(FLOAT_KEYS, np.nan), -1, {}, error)
 
     def _append(
         self,
@@ -62,6 +68,7 @@ class _Chunk:
         grain_id: str,
         faces: list[list[int]],
         floats: dict[str, float],
+        boundary: int,
         values: dict[str, str],
         error: str | None,
     ) -> None:
@@ -76,6 +83,7 @@ class _Chunk:
             self.neighbors.extend(nbrs)
         for key in FLOAT_KEYS:
             self.floats[key].append(floats[key])
+        self.boundary.append(boundary)
         for key, value in values.items():
             self.attributes.setdefault(key, [None] * g).append(value)
         for column in self.attributes.values():
@@ -94,6 +102,7 @@ class _Chunk:
             parse_errors=self.parse_errors,
             volume=np.asarray(self.floats["volume"], np.float64),
             area=np.asarray(self.floats["area"], np.float64),
+            boundary=np.asarray(self.boundary, np.int8) if max(self.boundary) >= 0 else None,
             attributes=self.attributes,
         )
 
@@ -146,3 +155,22 @@ def read_adjacency(lines: Iterable[bytes], source: str, chunk_size: int) -> Iter
             chunk = _Chunk(source)
     if len(chunk):
         yield chunk.batch()
+
+
+def adjacency_lines(batch: GrainBatch) -> Iterator[str]:
+    """The batch's grains as adjacency text lines (the inverse of :func:`read_adjacency`).
+
+    Volumes and areas are written with every digit (``repr``) where the batch has them.
+    """
+    for g in range(len(batch)):
+        faces = [
+            " ".join(map(str, batch.neighbors[batch.nbr_offsets[f] : batch.nbr_offsets[f + 1]]))
+            for f in range(batch.face_offsets[g], batch.face_offsets[g + 1])
+        ]
+        fields = [str(batch.grain_id[g]), ";".join(faces)]
+        for key, values in (("volume", batch.volume), ("area", batch.area)):
+            if values is not None and not np.isnan(values[g]):
+                fields.append(f"{key}={float(values[g])!r}")
+        if batch.boundary is not None and batch.boundary[g] >= 0:
+            fields.append(f"boundary={batch.boundary[g]}")
+        yield "\t".join(fields) + "\n"

@@ -176,7 +176,7 @@ def _oriented_facet(data: _Datafile, signed: int) -> list[tuple[int, int, int]]:
 
 
 def _grain(data: _Datafile, body: int, facet_bodies: dict[int, list[int]], marked: bool) -> tuple:
-    """(neighbour lists, volume, area) of one body; ``marked``: the file marks triple edges."""
+    """(neighbour lists, volume, area, boundary) of a body; ``marked``: triple edges marked."""
     _, signed_facets, given_volume = data.bodies[body]
     if len({abs(f) for f in signed_facets}) < len(signed_facets):
         twice = next(
@@ -239,7 +239,15 @@ def _grain(data: _Datafile, body: int, facet_bodies: dict[int, list[int]], marke
                 across[(face[k], e)] = face[b] if a == k else face[a]
     neighbours = [_walk_boundary(f, leaving[f], across, degree) for f in range(len(roots))]
     volume, area = _measure(position, polygons)
-    return neighbours, (given_volume if given_volume is not None else abs(volume)), area
+    # Cut by the sample boundary: facets shared with no other body, in a non-periodic foam. A
+    # lone body (one grain per file) cannot tell.
+    boundary = None
+    if data.periods is not None:
+        boundary = False
+    elif len(data.bodies) > 1:
+        boundary = any(not o for o in other)
+    volume = given_volume if given_volume is not None else abs(volume)
+    return neighbours, volume, area, boundary
 
 
 def _walk_boundary(f, leaving, across, degree) -> list[int]:
@@ -388,8 +396,8 @@ def _read_file(path: str, triple_edges: tuple[str, str]) -> list[_Grain]:
     for body, (line, _, _) in data.bodies.items():
         grain_id = stem if len(data.bodies) == 1 else str(body)
         try:
-            lists, volume, area = _grain(data, body, facet_bodies, marked)
-            grains.append(_Grain(grain_id, path, line, lists, volume, area))
+            lists, volume, area, boundary = _grain(data, body, facet_bodies, marked)
+            grains.append(_Grain(grain_id, path, line, lists, volume, area, boundary))
         except GrainError as exc:
             grains.append(_Grain(grain_id, path, line, error=str(exc)))
         except KeyError as exc:
@@ -405,6 +413,7 @@ class _Grain:
     lists: list[list[int]] = field(default_factory=list)
     volume: float = np.nan
     area: float = np.nan
+    boundary: bool | None = None
     error: str | None = None
 
 
@@ -423,4 +432,5 @@ def _batch(grains: list[_Grain]) -> GrainBatch:
         parse_errors={k: g.error for k, g in enumerate(grains) if g.error is not None},
         volume=np.array([g.volume for g in grains]),
         area=np.array([g.area for g in grains]),
+        boundary=np.array([-1 if g.boundary is None else int(g.boundary) for g in grains], np.int8),
     )

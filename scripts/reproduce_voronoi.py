@@ -1,0 +1,87 @@
+"""Regenerate a Poisson-Voronoi data set like the paper's V-268402 and compare with its tables.
+
+``grainclass voronoi 268402 --seed S -o F.parquet`` then ``grainclass summarize F.parquet``;
+every class fraction (Table V totals) and round<=k percentage (the V row of the round table)
+is printed beside the paper's with its deviation in binomial standard errors,
+sqrt(p (1 - p) / N) for the paper's fraction p. Exits 1 if any deviates by more than 4.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+N = 268_402
+# tbl:distribution_V_data, total row.
+CLASSES = {
+    "stacked": 1902,
+    "flag": 27810,
+    "flag+1": 59715,
+    "flag+1+1": 60760,
+    "flag+2": 6530,
+    "flag>=3": 108422,
+    "sc": 315,
+    "sc+1": 743,
+    "sc>=2": 2205,
+}
+# tbl:distribution, row V-268402 (percent).
+ROUND = {
+    "round0": 10.36,
+    "round<=1": 32.61,
+    "round<=2": 57.71,
+    "round<=3": 77.17,
+    "round<=4": 88.85,
+    "round<=5": 94.75,
+    "round<=6": 97.32,
+    "sc": 1.22,
+}
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--seed", type=int, default=20170101)
+    args = parser.parse_args()
+    gc = [sys.executable, "-m", "grainclass"]
+    with tempfile.TemporaryDirectory() as tmp:
+        out = Path(tmp) / "v.parquet"
+        start = time.perf_counter()
+        subprocess.run(
+            [*gc, "voronoi", str(N), "--seed", str(args.seed), "-o", str(out)], check=True
+        )
+        seconds = time.perf_counter() - start
+        summary = json.loads(
+            subprocess.run(
+                [*gc, "summarize", str(out), "--format", "json"], capture_output=True, check=True
+            ).stdout
+        )
+    head = summary["headline"]
+    print(f"{N} seeds (seed {args.seed}): generated and classified in {seconds:.1f} s")
+    print(
+        f"mean faces per grain {head['mean_faces']:.3f} (paper 15.535, theory "
+        f"{48 * math.pi**2 / 35 + 2:.3f}); triangles {head['triangle_faces_percent']:.2f}% "
+        f"(paper 13.50)"
+    )
+    total = next(r for r in summary["classes"] if r["n"] == "total")
+    rnd = next(r for r in summary["round"] if r["grains"] == "all")
+    worst = 0.0
+    print(f"  {'':10s}{'paper %':>9s}{'here %':>9s}{'dev/SE':>8s}")
+    rows = [(k, 100 * v / N, 100 * total[k] / total["all"]) for k, v in CLASSES.items()]
+    rows += [(k, v, rnd[k]) for k, v in ROUND.items()]
+    for name, paper, here in rows:
+        p = paper / 100
+        se = 100 * math.sqrt(p * (1 - p) / N)
+        deviation = (here - paper) / se
+        worst = max(worst, abs(deviation))
+        print(f"  {name:10s}{paper:9.2f}{here:9.2f}{deviation:8.1f}")
+    print(f"largest deviation: {worst:.1f} standard errors")
+    return 0 if worst <= 4 else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())

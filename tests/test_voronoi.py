@@ -1,0 +1,151 @@
+"""Poisson-Voronoi grains, and the same grains through the Voro++ and face-loop readers."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pyarrow as pa
+import pytest
+import pyvoro2
+from click.testing import CliRunner
+
+from grainclass import classify, read_dataset
+from grainclass.cli import cli
+from grainclass.voronoi import VoronoiReport, poisson_voronoi
+
+KEYS = ["n_faces", "p_vector", "class", "trees", "split_k", "penalty", "weinberg", "symmetry"]
+
+
+@pytest.fixture(scope="module")
+def cells_2000() -> pa.Table:
+    report = VoronoiReport()
+    table = pa.concat_tables(classify(b) for b in poisson_voronoi(2000, seed=7, report=report))
+    assert (report.cells, report.bad_corners, report.one_sided_faces) == (2000, 0, 0)
+    return table
+
+
+def test_voronoi_cells_fill_the_box_and_are_simple(cells_2000):
+    assert cells_2000.column("status").to_pylist() == ["ok"] * 2000
+    volume = pa.compute.sum(cells_2000.column("volume")).as_py()
+    assert volume == pytest.approx(1.0, rel=1e-9)
+    # Poisson-Voronoi: 48 pi^2 / 35 + 2 = 15.535 faces per cell on average (sd about 3.3).
+    mean_faces = pa.compute.mean(cells_2000.column("n_faces")).as_py()
+    assert abs(mean_faces - (48 * np.pi**2 / 35 + 2)) < 4 * 3.4 / np.sqrt(2000)
+    q = cells_2000.column("isoperimetric").to_numpy()
+    assert ((q > 0) & (q < 1)).all()  # a sphere is the only grain with Q = 1
+
+
+def test_voronoi_is_deterministic_for_a_seed(tmp_path):
+    runner = CliRunner()
+    for name in ("a.txt", "b.txt"):
+        result = runner.invoke(cli, ["voronoi", "300", "--seed", "3", "-o", str(tmp_path / name)])
+        assert result.exit_code == 0
+    assert (tmp_path / "a.txt").read_text() == (tmp_path / "b.txt").read_text()
+    assert "300 cells, volume 1 (box 1)" in result.stderr
+
+
+def _voro_cells(n: int, seed: int) -> list[dict]:
+    points = np.random.default_rng(seed).random((n, 3)) * 8
+    domain = pyvoro2.OrthorhombicCell(((0, 8),) * 3, periodic=(True, True, True))
+    return sorted(pyvoro2.compute(points, domain=domain, output="cells"), key=lambda c: c["id"])
+
+
+def test_the_same_grains_from_adjacency_voro_and_loop_text(tmp_path):
+    cells = _voro_cells(300, 11)
+    voro = tmp_path / "cells.voro"
+    voro.write_text(
+        "".join(
+            f"{c['id']} {c['volume']} "
+            + " ".join("(" + ",".join(map(str, f["vertices"])) + ")" for f in c["faces"])
+            + "\n"
+            for c in cells
+        )
+    )
+    loops = tmp_path / "cells.loops"
+    loops.write_text(
+        "".join(
+            f"{c['id']}\t" + ";".join(" ".join(map(str, f["vertices"])) for f in c["faces"]) + "\n"
+            for c in cells
+        )
+    )
+    adjacency = tmp_path / "cells.txt"
+    from_voro = classify(next(read_dataset(str(voro))))  # sniffed
+    from_loops = classify(next(read_dataset(str(loops), format="loops")))
+    from grainclass.readers.adjacency import adjacency_lines
+
+    adjacency.write_text("".join(adjacency_lines(next(read_dataset(str(voro))))))
+    from_text = classify(next(read_dataset(str(adjacency))))
+    assert from_voro.column("status").to_pylist() == ["ok"] * 300
+    assert from_voro.select(KEYS).equals(from_loops.select(KEYS))
+    assert from_voro.select(KEYS).equals(from_text.select(KEYS))
+    assert from_voro.column("volume").to_pylist() == [c["volume"] for c in cells]
+
+
+def test_loops_with_a_corner_of_four_faces_and_an_open_surface(tmp_path):
+    path = tmp_path / "bad.loops"
+    path.write_text(
+        "pyramid\t0 3 2 1;0 1 4;1 2 4;2 3 4;3 0 4\n"
+        "open_box\t0 3 2 1;0 1 5 4;1 2 6 5;2 3 7 6;3 0 4 7\n"
+        "cube\t0 3 2 1;4 5 6 7;0 1 5 4;1 2 6 5;2 3 7 6;3 0 4 7\n"
+    )
+    rows = classify(next(read_dataset(str(path), format="loops"))).to_pylist()
+    assert [r["status"] for r in rows] == ["non_simple", "invalid", "ok"]
+    assert "edge 5-4 lies on 1 face(s)" in rows[1]["error"]
+    assert (rows[2]["class"], rows[2]["penalty"]) == ("flag", 18)
+
+
+def test_unreadable_voro_line_is_an_invalid_row(tmp_path):
+    path = tmp_path / "cells.voro"
+    path.write_text("1 0.5 (0,1,2) (0,2,3) (0,3,1) (1,3,2)\n2 x (0,1,2)\n")
+    rows = classify(next(read_dataset(str(path)))).to_pylist()
+    assert [r["status"] for r in rows] == ["ok", "invalid"]
+    assert rows[1]["error"].startswith(f"{path}:2: cannot read this cell")
+
+
+def test_boundary_grains_are_left_out_of_summaries_unless_asked(tmp_path):
+    cube = "1 2 3 4;0 4 5 2;0 1 5 3;0 2 5 4;0 3 5 1;1 4 3 2"
+    path = tmp_path / "cut.txt"
+    path.write_text(f"inside\t{cube}\tboundary=0\ncut\t{cube}\tboundary=yes\nunknown\t{cube}\n")
+    rows = classify(next(read_dataset(str(path)))).to_pylist()
+    assert [r["boundary"] for r in rows] == [False, True, None]
+    runner = CliRunner()
+    left_out = runner.invoke(
+        cli, ["summarize", str(path), "--table", "classes", "--format", "json"]
+    )
+    both = runner.invoke(
+        cli,
+        ["summarize", str(path), "--table", "classes", "--format", "json", "--include-boundary"],
+    )
+    assert json.loads(left_out.stdout)["classes"][-1]["all"] == 2
+    assert json.loads(left_out.stdout)["headline"]["boundary_excluded"] == 1
+    assert json.loads(both.stdout)["classes"][-1]["all"] == 3
+
+
+def test_geometry_table_gives_mean_q_and_its_standard_error(tmp_path):
+    cube = "1 2 3 4;0 4 5 2;0 1 5 3;0 2 5 4;0 3 5 1;1 4 3 2"
+    path = tmp_path / "q.txt"
+    # Q = 36 pi V^2 / S^3: unit cube pi/6; a 1 x 1 x 2 box 36 pi 4 / 1000.
+    path.write_text(f"a\t{cube}\tvolume=1\tarea=6\nb\t{cube}\tvolume=2\tarea=10\n")
+    result = CliRunner().invoke(
+        cli, ["summarize", str(path), "--table", "geometry", "--format", "json"]
+    )
+    rows = json.loads(result.stdout)["geometry"]
+    q = [np.pi / 6, 36 * np.pi * 4 / 1000]
+    mean, se = np.mean(q), np.std(q, ddof=1) / np.sqrt(2)
+    assert rows == [
+        {
+            "by": "n_faces",
+            "value": "6",
+            "grains": 2,
+            "mean_Q": pytest.approx(mean),
+            "se_Q": pytest.approx(se),
+        },
+        {
+            "by": "round_k",
+            "value": "0",
+            "grains": 2,
+            "mean_Q": pytest.approx(mean),
+            "se_Q": pytest.approx(se),
+        },
+    ]
