@@ -202,6 +202,35 @@ def bench_startup(work: Path) -> None:
     )
 
 
+def bench_voronoi(work: Path, n: int = 268_402) -> None:
+    import pyvoro2
+
+    gc = " ".join(GRAINCLASS)
+    text = work / "pv.txt"
+    seconds, mem = timed(f"{gc} voronoi {n} --seed 1 -o {text} -q")
+    points = np.random.default_rng(1).random((n, 3)) * 1024
+    domain = pyvoro2.OrthorhombicCell(((0.0, 1024.0),) * 3, periodic=(True, True, True))
+    start = time.perf_counter()
+    pyvoro2.compute(points, domain=domain, output="cells")
+    voro_only = time.perf_counter() - start
+    print(
+        f"(f) grainclass voronoi {n:,} -o pv.txt: {seconds:.1f} s, {mem:.0f} MB "
+        f"(pyvoro2.compute alone, in process: {voro_only:.1f} s)"
+    )
+    voro = shutil.which("voro++")
+    if voro:
+        seeds = work / "seeds"
+        np.savetxt(seeds, np.column_stack([np.arange(n), points]), fmt="%d %.17g %.17g %.17g")
+        command = f"{voro} -p -c '%i %v %F %t' 0 1024 0 1024 0 1024 {seeds}"
+        cli_seconds, cli_mem = timed(command)
+        print(f"    voro++ -p, same seeds: {cli_seconds:.1f} s, {cli_mem:.0f} MB")
+        out = work / "v.parquet"
+        classify_seconds, classify_mem = timed(f"{gc} classify {seeds}.vol -o {out} -q")
+        print(f"    grainclass classify of that: {classify_seconds:.1f} s, {classify_mem:.0f} MB")
+    else:
+        print("    (voro++ not installed: apt-get install voro++ to compare)")
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--sizes", type=int, nargs="+", default=[14, 15, 16])
@@ -214,6 +243,7 @@ def main() -> None:
         bench_pipelines(args.sizes, work)
         bench_kernel(args.kernel_sizes, work)
         bench_adjacency(work)
+        bench_voronoi(work)
 
 
 if __name__ == "__main__":

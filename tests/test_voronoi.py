@@ -4,12 +4,14 @@ from __future__ import annotations
 
 import itertools
 import json
+import shutil
 import subprocess
 import sys
 from pathlib import Path
 
 import numpy as np
 import pyarrow as pa
+import pyarrow.compute as pc
 import pytest
 import pyvoro2
 from click.testing import CliRunner
@@ -175,3 +177,24 @@ def test_fresh_poisson_voronoi_reproduces_the_papers_v_data_set():
     mean_faces, triangles = float(words[4]), float(words[words.index("triangles") + 1])
     assert abs(mean_faces - 15.535) <= 0.03
     assert abs(triangles - 13.50) <= 0.08
+
+
+@pytest.mark.skipif(shutil.which("voro++") is None, reason="the voro++ command is not installed")
+def test_voro_command_line_output_gives_the_same_grains(tmp_path):
+    # The Debian voro++ program on the seeds grainclass voronoi draws (scaled to its box).
+    n, seed = 400, 5
+    points = np.random.default_rng(seed).random((n, 3)) * 1024
+    seeds = tmp_path / "seeds"
+    np.savetxt(seeds, np.column_stack([np.arange(n), points]), fmt="%d %.17g %.17g %.17g")
+    subprocess.run(
+        ["voro++", "-p", "-c", "%i %v %F %t", "0", "1024", "0", "1024", "0", "1024", str(seeds)],
+        check=True,
+    )
+    from_cli = pa.concat_tables(classify(b) for b in read_dataset(str(seeds) + ".vol"))
+    ours = pa.concat_tables(classify(b) for b in poisson_voronoi(n, seed=seed))
+    order = pc.sort_indices(from_cli, [("grain_id", "ascending")])
+    by_id = from_cli.take(order)
+    keys = ["class", "trees", "weinberg", "penalty"]
+    assert by_id.column("grain_id").to_pylist() == sorted(ours.column("grain_id").to_pylist())
+    ours = ours.take(pc.sort_indices(ours, [("grain_id", "ascending")]))
+    assert by_id.select(keys).equals(ours.select(keys))

@@ -20,7 +20,7 @@ Exit codes:
   130  interrupted (no partial output file is left behind)
 """
 
-INPUT_FORMATS = ("auto", "adjacency", "planar_code", "evolver", "voro", "loops")
+INPUT_FORMATS = ("auto", "adjacency", "planar_code", "evolver", "voro", "neper", "loops")
 STATUSES = ("ok", "degenerate", "non_simple", "invalid")
 CLASSES = ("stacked", "flag", "flag+1", "flag+1+1", "flag+2", "flag>=3", "sc", "sc+1", "sc>=2")
 

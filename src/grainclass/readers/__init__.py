@@ -19,10 +19,11 @@ from grainclass.errors import InputError
 from grainclass.readers.adjacency import read_adjacency
 from grainclass.readers.evolver import DEFAULT_TRIPLE_EDGES, read_evolver
 from grainclass.readers.loops import read_loops
+from grainclass.readers.neper import looks_like_neper, read_neper
 from grainclass.readers.planar_code import read_planar_code
 from grainclass.readers.voro import looks_like_voro, read_voro
 
-FORMATS = ("adjacency", "planar_code", "evolver", "voro", "loops")
+FORMATS = ("adjacency", "planar_code", "evolver", "voro", "neper", "loops")
 _EVOLVER = re.compile(rb"(?im)^\s*(vertices|torus_filled|torus|periods)\s*(//.*)?$")
 DEFAULT_CHUNK_SIZE = 50_000
 
@@ -49,6 +50,8 @@ def sniff(head: bytes) -> str:
         return "evolver"
     if looks_like_voro(head):
         return "voro"
+    if looks_like_neper(head):
+        return "neper"
     return "adjacency"
 
 
@@ -123,7 +126,7 @@ def read_dataset(
     ----------
     paths : str or sequence of str
         Files to read; ``-`` is standard input; a folder stands for its ``*.fe`` files.
-    format : {None, "adjacency", "planar_code", "evolver", "voro", "loops"}
+    format : {None, "adjacency", "planar_code", "evolver", "voro", "neper", "loops"}
         The input format; None sniffs it from each input (``.fe`` files are Surface Evolver;
         face-vertex-loop text must be named, it looks like adjacency text).
     chunk_size : int
@@ -166,6 +169,8 @@ def read_dataset(
                     yield from read_planar_code(stream, path, chunk_size)
                 elif fmt == "voro":
                     yield from read_voro(stream, path, chunk_size)
+                elif fmt == "neper":
+                    yield from read_neper(stream, path, chunk_size)
                 elif fmt == "loops":
                     yield from read_loops(stream, path, chunk_size)
                 else:
