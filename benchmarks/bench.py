@@ -64,7 +64,7 @@ def bench_pipelines(sizes: list[int], work: Path) -> None:
 
 
 def _kernel_inputs(batch):
-    """The arrays ``classify`` hands to the kernels, for timing them alone."""
+    """The arrays ``classify`` hands to the kernels (after the grain range), to time them alone."""
     g = len(batch)
     n_faces = batch.n_faces
     tree_offsets = np.zeros(g + 1, np.int64)
@@ -72,12 +72,12 @@ def _kernel_inputs(batch):
     code_offsets = np.zeros(g + 1, np.int64)
     np.cumsum(6 * n_faces - 11, out=code_offsets[1:])
     return {
+        "n": g,
         "classify": (
             batch.face_offsets,
             batch.nbr_offsets,
             batch.neighbors,
             np.ones(g, bool),
-            64,
             64,
             np.zeros(g, np.int8),
             np.zeros(g, bool),
@@ -98,7 +98,6 @@ def _kernel_inputs(batch):
             np.ones(g, bool),
             np.ones(g, bool),
             int(n_faces.max()),
-            64,
             code_offsets,
             np.zeros(int(code_offsets[-1]), np.int32),
             np.zeros(g, np.int32),
@@ -108,11 +107,10 @@ def _kernel_inputs(batch):
 
 
 def bench_kernel(sizes: list[int], work: Path) -> None:
-    import numba
-
     from grainclass._kernels.batch import _classify_batch
     from grainclass._kernels.weinberg import _weinberg_batch
     from grainclass.classification import classify
+    from grainclass.parallel import run_ranges, set_jobs
     from grainclass.readers import read_dataset
 
     plantri = find_plantri()
@@ -131,12 +129,16 @@ def bench_kernel(sizes: list[int], work: Path) -> None:
         grains = sum(len(b) for b in batches)
         inputs = [_kernel_inputs(b) for b in batches]
         classify(batches[0])
-        for threads in sorted({1, numba.config.NUMBA_NUM_THREADS}):
-            numba.set_num_threads(threads)
+        for threads in sorted({1, os.cpu_count() or 1}):
+            set_jobs(threads)
             rates = []
             for run in (
-                lambda inputs=inputs: [_classify_batch(*i["classify"]) for i in inputs],
-                lambda inputs=inputs: [_weinberg_batch(*i["weinberg"]) for i in inputs],
+                lambda inputs=inputs: [
+                    run_ranges(_classify_batch, i["n"], *i["classify"]) for i in inputs
+                ],
+                lambda inputs=inputs: [
+                    run_ranges(_weinberg_batch, i["n"], *i["weinberg"]) for i in inputs
+                ],
                 lambda batches=batches: [classify(b) for b in batches],
                 lambda batches=batches: [classify(b, types=False) for b in batches],
             ):

@@ -122,16 +122,18 @@ def test_classify_agrees_with_oracle_on_every_triangulation_with_10_and_11_faces
 
 
 def test_parallel_equals_serial(plantri_output):
-    import numba
+    from grainclass.parallel import get_jobs, set_jobs
 
     batch = next(read_dataset(str(plantri_output(11)), chunk_size=10**6))
-    threads = numba.get_num_threads()
+    jobs = get_jobs()
     try:
-        numba.set_num_threads(1)
+        set_jobs(1)
         serial = classify(batch)
+        set_jobs(7)  # more ranges than cores: uneven cuts, same rows
+        parallel = classify(batch)
     finally:
-        numba.set_num_threads(threads)
-    assert classify(batch).equals(serial)
+        set_jobs(jobs)
+    assert parallel.equals(serial)
 
 
 def test_chunk_size_1_equals_chunk_size_100000(plantri_output):

@@ -10,6 +10,7 @@ from grainclass._kernels import codes
 from grainclass._kernels.bits import MAX_BITSET_FACES
 from grainclass.arrow import repeated_string, string_array, strings_from_codes
 from grainclass.batch import GrainBatch
+from grainclass.parallel import run_ranges
 
 _MESSAGES = {
     codes.E_TOO_FEW_FACES: "{a} faces; a grain needs at least 4",
@@ -113,9 +114,6 @@ def classify(
     >>> row["class"], row["split_k"], row["split_m"], row["penalty"]
     ('flag', 1, 1, 18)
     """
-    import numba
-
-    n_blocks = 16 * numba.get_num_threads()  # enough to balance the threads' load
     from grainclass._kernels.batch import _classify_batch
     from grainclass._kernels.columns import _code_strings, _compact, _p_vectors
     from grainclass._kernels.weinberg import _weinberg_batch
@@ -136,13 +134,14 @@ def classify(
     np.cumsum(3 * n_faces, out=tree_offsets[1:])
     tree_bytes = np.empty(int(tree_offsets[-1]), np.uint8)
     tree_length = np.zeros(g, np.int64)
-    _classify_batch(
+    run_ranges(
+        _classify_batch,
+        g,
         batch.face_offsets,
         batch.nbr_offsets,
         batch.neighbors,
         parsed,
         max_bitset_faces,
-        n_blocks,
         status,
         consistent,
         err,
@@ -171,14 +170,15 @@ def classify(
     symmetry = np.zeros(g, np.int32)
     chirality = np.zeros(g, np.int8)
     if types:
-        _weinberg_batch(
+        run_ranges(
+            _weinberg_batch,
+            g,
             batch.face_offsets,
             batch.nbr_offsets,
             batch.neighbors,
             ok,
             consistent,
             int(n_faces.max()) if g else 0,
-            n_blocks,
             code_offsets,
             weinberg,
             symmetry,

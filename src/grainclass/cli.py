@@ -98,9 +98,9 @@ def _input_options(*format_flags: str):
 
 def _set_jobs(jobs: int | None) -> None:
     if jobs is not None:
-        import numba
+        from grainclass.parallel import set_jobs
 
-        numba.set_num_threads(min(jobs, numba.config.NUMBA_NUM_THREADS))
+        set_jobs(jobs)
 
 
 def _progress(quiet: bool):

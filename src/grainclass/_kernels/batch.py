@@ -6,7 +6,6 @@ diagnoses anything (``validate.py``, ``reduce.py``, ``belts.py``).
 """
 
 import numpy as np
-from numba import prange
 
 from grainclass._kernels.belts import _four_belts
 from grainclass._kernels.bits import MAX_BITSET_FACES, popcount
@@ -21,7 +20,7 @@ from grainclass._kernels.small import (
 )
 from grainclass._kernels.trees import _forest_scratch, _forest_string, _parents_from_links
 from grainclass._kernels.validate import _validate
-from grainclass._numba import njit, njit_parallel
+from grainclass._numba import njit
 
 
 @njit
@@ -50,14 +49,15 @@ def _classify_general(n, off, nb, err, out, result, belts):
         _four_belts(n, off, nb, adj, belts)
 
 
-@njit_parallel
+@njit
 def _classify_batch(
+    first,
+    last,
     face_offsets,
     nbr_offsets,
     neighbors,
     parsed,
     max_small,
-    n_blocks,
     status,
     consistent,
     err,
@@ -70,61 +70,59 @@ def _classify_batch(
     tree_bytes,
     tree_length,
 ):
-    """Classify all grains; row ``g`` of every output is written by the iteration for ``g`` only.
+    """Classify grains ``first:last``; row ``g`` of every output is written for grain ``g`` only,
+    so disjoint ranges can run in threads at once (see :mod:`grainclass.parallel`).
 
     Layout: grain g has faces ``face_offsets[g]:face_offsets[g+1]``; face f has the local
     neighbour indices ``neighbors[nbr_offsets[f]:nbr_offsets[f+1]]``. ``err`` is int64[G, 3]
     (code, a, b), ``consistent`` marks grains whose lists were already oriented one way,
     ``belts`` int64[G, 3] (split_k, count, weight), ``tree_bytes`` holds 3n bytes
     per grain from ``tree_offsets[g]``. Family is -1 for grains that are not ok, depth 0 for
-    fundamental ones. Grains with more than ``max_small`` faces skip the fast path. The grains
-    are split into ``n_blocks`` contiguous blocks, each with its own scratch arrays.
+    fundamental ones. Grains with more than ``max_small`` faces skip the fast path; the fast
+    path's scratch arrays are allocated once per call.
     """
-    n_grains = face_offsets.shape[0] - 1
-    n_blocks = min(n_grains, n_blocks)
-    for block in prange(n_blocks):
-        adj = np.empty(MAX_BITSET_FACES, np.uint64)
-        following = np.empty((MAX_BITSET_FACES, MAX_BITSET_FACES), np.uint8)
-        link = np.empty(MAX_BITSET_FACES, np.uint64)
-        removed_round = np.empty(MAX_BITSET_FACES, np.int32)
-        parent = np.empty(MAX_BITSET_FACES, np.int32)
-        scratch = _forest_scratch(MAX_BITSET_FACES)
-        result = np.zeros(6, np.int64)
-        for g in range(block * n_grains // n_blocks, (block + 1) * n_grains // n_blocks):
-            family[g] = -1
-            depth[g] = 0
-            if not parsed[g]:
-                status[g] = INVALID
-                err[g, 0] = E_PARSE
-                continue
-            f0 = face_offsets[g]
-            n = face_offsets[g + 1] - f0
-            out = tree_bytes[tree_offsets[g] : tree_offsets[g + 1]]
-            if n <= max_small and _validate_small(n, nbr_offsets, neighbors, f0, adj, following):
-                status[g] = OK
-                consistent[g] = True
-                alive = _reduce_small(n, adj, removed_round, link)
-                fundamental[g] = popcount(alive)
-                if fundamental[g] == 4:
-                    family[g] = STACKED
-                elif fundamental[g] < n:
-                    family[g] = SC if _has_empty_triangle_small(adj, alive) else FLAG
-                    _parents_small(n, alive, removed_round, link, parent)
-                    trees_count[g], depth[g], tree_length[g] = _forest_string(
-                        n, removed_round, parent, out, scratch
-                    )
-                elif _has_empty_triangle_small(adj, alive):
-                    family[g] = SC
-                else:
-                    family[g] = FLAG
-                    _four_belts_small(n, adj, belts[g])
-                continue
-            off = nbr_offsets[f0 : f0 + n + 1] - nbr_offsets[f0]
-            nb = neighbors[nbr_offsets[f0] : nbr_offsets[f0 + n]]
-            result[:] = -1
-            _classify_general(n, off, nb, err[g], out, result, belts[g])
-            status[g] = result[0]
-            if result[0] == OK:
-                family[g], fundamental[g] = result[1], result[2]
-                if result[3] >= 0:
-                    trees_count[g], depth[g], tree_length[g] = result[3], result[4], result[5]
+    adj = np.empty(MAX_BITSET_FACES, np.uint64)
+    following = np.empty((MAX_BITSET_FACES, MAX_BITSET_FACES), np.uint8)
+    link = np.empty(MAX_BITSET_FACES, np.uint64)
+    removed_round = np.empty(MAX_BITSET_FACES, np.int32)
+    parent = np.empty(MAX_BITSET_FACES, np.int32)
+    scratch = _forest_scratch(MAX_BITSET_FACES)
+    result = np.zeros(6, np.int64)
+    for g in range(first, last):
+        family[g] = -1
+        depth[g] = 0
+        if not parsed[g]:
+            status[g] = INVALID
+            err[g, 0] = E_PARSE
+            continue
+        f0 = face_offsets[g]
+        n = face_offsets[g + 1] - f0
+        out = tree_bytes[tree_offsets[g] : tree_offsets[g + 1]]
+        if n <= max_small and _validate_small(n, nbr_offsets, neighbors, f0, adj, following):
+            status[g] = OK
+            consistent[g] = True
+            alive = _reduce_small(n, adj, removed_round, link)
+            fundamental[g] = popcount(alive)
+            if fundamental[g] == 4:
+                family[g] = STACKED
+            elif fundamental[g] < n:
+                family[g] = SC if _has_empty_triangle_small(adj, alive) else FLAG
+                _parents_small(n, alive, removed_round, link, parent)
+                trees_count[g], depth[g], tree_length[g] = _forest_string(
+                    n, removed_round, parent, out, scratch
+                )
+            elif _has_empty_triangle_small(adj, alive):
+                family[g] = SC
+            else:
+                family[g] = FLAG
+                _four_belts_small(n, adj, belts[g])
+            continue
+        off = nbr_offsets[f0 : f0 + n + 1] - nbr_offsets[f0]
+        nb = neighbors[nbr_offsets[f0] : nbr_offsets[f0 + n]]
+        result[:] = -1
+        _classify_general(n, off, nb, err[g], out, result, belts[g])
+        status[g] = result[0]
+        if result[0] == OK:
+            family[g], fundamental[g] = result[1], result[2]
+            if result[3] >= 0:
+                trees_count[g], depth[g], tree_length[g] = result[3], result[4], result[5]

@@ -43,7 +43,8 @@ def _compact(slot_offsets, data, lengths):
         offsets[g + 1] = offsets[g] + lengths[g]
     packed = np.empty(offsets[n], np.uint8)
     for g in range(n):
-        packed[offsets[g] : offsets[g + 1]] = data[slot_offsets[g] : slot_offsets[g] + lengths[g]]
+        for i in range(lengths[g]):
+            packed[offsets[g] + i] = data[slot_offsets[g] + i]
     return offsets, packed
 
 
@@ -59,7 +60,8 @@ def _strings_from_codes(codes, names, name_offsets):
     for g in range(n):
         c = codes[g]
         if c >= 0:
-            data[offsets[g] : offsets[g + 1]] = names[name_offsets[c] : name_offsets[c + 1]]
+            for i in range(offsets[g + 1] - offsets[g]):
+                data[offsets[g] + i] = names[name_offsets[c] + i]
     return offsets, data
 
 

@@ -17,6 +17,18 @@ OPEN, CLOSE, PLUS = 40, 41, 43  # "(", ")", "+"
 
 
 @njit
+def _copy(source, at, count, target, to):
+    """Copy ``count`` bytes from ``source[at:]`` to ``target[to:]``; returns the end in target.
+
+    A loop, not a slice assignment: that would compile shape checks with formatted error
+    messages, seconds of first-run compilation for nothing.
+    """
+    for i in range(count):
+        target[to + i] = source[at + i]
+    return to + count
+
+
+@njit
 def _less(buf, a_start, a_len, b_start, b_len):
     """Byte-wise lexicographic ``buf[a] < buf[b]`` for two slices of one buffer."""
     for i in range(min(a_len, b_len)):
@@ -110,8 +122,7 @@ def _forest_string(n, removed_round, parent, out, scratch):
             pos += 1
             tallest = 0
             for c in kids:
-                buf[pos : pos + length[c]] = buf[start[c] : start[c] + length[c]]
-                pos += length[c]
+                pos = _copy(buf, start[c], length[c], buf, pos)
                 tallest = max(tallest, height[c])
             buf[pos] = CLOSE
             pos += 1
@@ -131,6 +142,5 @@ def _forest_string(n, removed_round, parent, out, scratch):
             out[written] = PLUS
             written += 1
         v = roots[r]
-        out[written : written + length[v]] = buf[start[v] : start[v] + length[v]]
-        written += length[v]
+        written = _copy(buf, start[v], length[v], out, written)
     return n_roots, depth, written

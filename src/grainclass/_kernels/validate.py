@@ -283,7 +283,8 @@ def _rotation(n, off, nb, rot):
                 rot[i] = cur
                 nxt = third[v, cur, 0] if third[v, cur, 0] != prev else third[v, cur, 1]
                 prev, cur = cur, nxt
-        source[:] = rot
+        for i in range(off[n]):
+            source[i] = rot[i]
         _orient(n, off, source, adj, sign)
     for v in range(n):
         d = off[v + 1] - off[v]

@@ -14,10 +14,9 @@ as counter-clockwise seen from outside (the orientation of face 0's list for tex
 """
 
 import numpy as np
-from numba import prange
 
 from grainclass._kernels.validate import _rotation
-from grainclass._numba import njit, njit_parallel
+from grainclass._numba import njit
 
 
 @njit
@@ -151,7 +150,8 @@ def _weinberg(corner_nbr, left_face, t, best, stamp, label, used, code):
                 )
                 gen += 1
                 if result < 0:
-                    best[:length] = code[:length]
+                    for i in range(length):
+                        best[i] = code[i]
                     symmetry = 1
                     right, left = (1, 0) if turn < 0 else (0, 1)
                 elif result == 0:
@@ -164,55 +164,56 @@ def _weinberg(corner_nbr, left_face, t, best, stamp, label, used, code):
     return symmetry, chirality
 
 
-@njit_parallel
+@njit
 def _weinberg_batch(
+    first,
+    last,
     face_offsets,
     nbr_offsets,
     neighbors,
     ok,
     consistent,
     max_faces,
-    n_blocks,
     code_offsets,
     codes,
     symmetry,
     chirality,
 ):
-    """Weinberg vectors of the ok grains: grain g's code goes to ``codes[code_offsets[g]:]``
-    (6n - 11 entries), with its symmetry (automorphisms, reflections included) and chirality.
+    """Weinberg vectors of the ok grains among ``first:last``: grain g's code goes to
+    ``codes[code_offsets[g]:]`` (6n - 11 entries), with its symmetry (automorphisms, reflections
+    included) and chirality. Rows of different ranges are disjoint: ranges can run in threads.
 
-    ``consistent[g]``: the lists already turn one way (no orientation to recover). Grains are
-    split into ``n_blocks`` blocks with scratch arrays for up to ``max_faces`` faces.
+    ``consistent[g]``: the lists already turn one way (no orientation to recover). Scratch
+    arrays for up to ``max_faces`` faces are allocated once per call.
     """
-    n_grains = face_offsets.shape[0] - 1
-    n_blocks = min(n_grains, n_blocks)
-    for block in prange(n_blocks):
-        t_max = max(2 * max_faces - 4, 1)
-        darts = max(6 * max_faces - 12, 1)
-        rot = np.empty(darts, np.int64)
-        pos = np.empty((max_faces, max_faces), np.int64)
-        corner = np.empty(darts, np.int64)
-        corner_nbr = np.empty((t_max, 3), np.int64)
-        left_face = np.empty((t_max, 3), np.int64)
-        stamp = np.zeros(t_max, np.int64)
-        label = np.empty(t_max, np.int64)
-        used = np.zeros((t_max, 3), np.int64)
-        code = np.empty(3 * t_max + 1, np.int32)
-        for g in range(block * n_grains // n_blocks, (block + 1) * n_grains // n_blocks):
-            if not ok[g]:
-                continue
-            f0 = face_offsets[g]
-            n = face_offsets[g + 1] - f0
-            off = nbr_offsets[f0 : f0 + n + 1] - nbr_offsets[f0]
-            nb = neighbors[nbr_offsets[f0] : nbr_offsets[f0 + n]]
-            if consistent[g]:
-                rot[: off[n]] = nb
-            else:  # orientation or order to recover: rare, allocates
-                _rotation(n, off, nb, rot[: off[n]])
-            t = _corners(n, off, rot, pos, corner, corner_nbr, left_face)
-            best = codes[code_offsets[g] : code_offsets[g] + 3 * t + 1]
-            stamp[:t] = 0
-            used[:t] = 0
-            symmetry[g], chirality[g] = _weinberg(
-                corner_nbr, left_face, t, best, stamp, label, used, code
-            )
+    t_max = max(2 * max_faces - 4, 1)
+    darts = max(6 * max_faces - 12, 1)
+    rot = np.empty(darts, np.int64)
+    pos = np.empty((max_faces, max_faces), np.int64)
+    corner = np.empty(darts, np.int64)
+    corner_nbr = np.empty((t_max, 3), np.int64)
+    left_face = np.empty((t_max, 3), np.int64)
+    stamp = np.zeros(t_max, np.int64)
+    label = np.empty(t_max, np.int64)
+    used = np.zeros((t_max, 3), np.int64)
+    code = np.empty(3 * t_max + 1, np.int32)
+    for g in range(first, last):
+        if not ok[g]:
+            continue
+        f0 = face_offsets[g]
+        n = face_offsets[g + 1] - f0
+        off = nbr_offsets[f0 : f0 + n + 1] - nbr_offsets[f0]
+        nb = neighbors[nbr_offsets[f0] : nbr_offsets[f0 + n]]
+        if consistent[g]:
+            for i in range(off[n]):
+                rot[i] = nb[i]
+        else:  # orientation or order to recover: rare, allocates
+            _rotation(n, off, nb, rot)
+        t = _corners(n, off, rot, pos, corner, corner_nbr, left_face)
+        for c in range(t):
+            stamp[c] = 0
+            used[c, 0] = used[c, 1] = used[c, 2] = 0
+        best = codes[code_offsets[g] : code_offsets[g] + 3 * t + 1]
+        symmetry[g], chirality[g] = _weinberg(
+            corner_nbr, left_face, t, best, stamp, label, used, code
+        )
