@@ -219,6 +219,13 @@ def bench_voronoi(work: Path, n: int = 268_402) -> None:
         f"(f) grainclass voronoi {n:,} -o pv.txt: {seconds:.1f} s, {mem:.0f} MB "
         f"(pyvoro2.compute alone, in process: {voro_only:.1f} s)"
     )
+    out = work / "pv.parquet"
+    with_types, _ = timed(f"{gc} classify {text} -o {out} -q")
+    without, _ = timed(f"{gc} classify {text} -o {out} -q --no-types")
+    print(
+        f"    classify pv.txt: {with_types:.1f} s ({n / with_types:,.0f} grains/s) with Weinberg "
+        f"vectors, {without:.1f} s ({n / without:,.0f} grains/s) with --no-types"
+    )
     voro = shutil.which("voro++")
     if voro:
         seeds = work / "seeds"
