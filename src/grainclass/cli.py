@@ -325,10 +325,14 @@ def voronoi_cmd(n_seeds: int, seed: int | None, box: float, output: str, quiet: 
     (three faces at each corner, every face seen from both sides) before it is written.
     """
     from grainclass.errors import GrainclassError
+    from grainclass.pipeline import Progress
     from grainclass.voronoi import VoronoiReport, poisson_voronoi
 
     report = VoronoiReport()
-    batches = poisson_voronoi(n_seeds, seed, box, report=report)
+    progress = Progress(enabled=not quiet and sys.stderr.isatty())
+    if progress.enabled:
+        click.echo(f"tessellating {n_seeds:,} seeds with Voro++ ...", err=True)
+    batches = progress.wrap(poisson_voronoi(n_seeds, seed, box, report=report))
     try:
         if output.lower().endswith(".parquet"):
             from grainclass.classification import classify

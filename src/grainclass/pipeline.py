@@ -112,9 +112,10 @@ class Progress:
         self.start = time.perf_counter()
         self._drawn = 0.0
 
-    def wrap(self, tables: Iterable[pa.Table]) -> Iterator[pa.Table]:
+    def wrap(self, tables: Iterable[T]) -> Iterator[T]:
+        """Pass ``tables`` (tables or batches: anything with a length) through, counting."""
         for table in tables:
-            self.grains += len(table)
+            self.grains += len(table)  # type: ignore[arg-type]
             now = time.perf_counter()
             if self.enabled and now - self._drawn > 0.2:
                 rate = self.grains / max(now - self.start, 1e-9)
