@@ -44,5 +44,8 @@ reproduce-enumeration: install
 reproduce-voronoi: install
 	$(BIN)/python scripts/reproduce_voronoi.py
 
+# numba's cache does not notice a change in a kernel called from another file: after editing
+# src/grainclass/_kernels, clear it.
 clean:
 	rm -rf build .pytest_cache
+	find src -name '*.nbi' -delete -o -name '*.nbc' -delete

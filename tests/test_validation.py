@@ -187,3 +187,29 @@ def test_grain_of_a_disconnected_surface_with_no_cyclic_order_is_invalid():
     lists = [[x for x in nbrs if {f, x} != {2, 3}] for f, nbrs in enumerate(lists)]
     row = _row(lists)
     assert row["status"] == "invalid"
+
+
+@pytest.mark.parametrize(
+    ("faces", "status", "words"),
+    [
+        ("1 2 3 4;0 4 5 2;0 1 5 3;0 2 5 4;0 3 5 1;1 4 3 2;", "ok", None),  # trailing ;
+        (" 1 2 3 4 ; 0 4 5 2;0 1 5 3;0 2 5 4;0 3 5 1;1 4 3 2 ", "ok", None),  # blanks
+        (
+            "1 2 3 4;;0 4 5 2;0 1 5 3;0 2 5 4;0 3 5 1;1 4 3 2",
+            "invalid",
+            "face 1 lists no neighbours",
+        ),
+        ("1 2 3 4;0 4 5 2;0 1 5 3;0 2 5 4;0 3 5 1;-1 4 3 2", "invalid", "'-1' is not a face index"),
+        ("", "invalid", "face 0 lists no neighbours"),
+        ("1 2 3 99999999999;0 4 5 2;0 1 5 3;0 2 5 4;0 3 5 1;1 4 3 2", "invalid", "2147483647"),
+    ],
+)
+def test_faces_field_edge_cases(tmp_path, faces, status, words):
+    path = tmp_path / "one.txt"
+    path.write_text(f"g\t{faces}\n")
+    (row,) = _table(path).to_pylist()
+    assert row["status"] == status
+    if words is None:
+        assert row["penalty"] == 18
+    else:
+        assert words in row["error"]

@@ -45,6 +45,8 @@ def _validate_small(n, nbr_offsets, neighbors, f0, adj, following):
             return False
         row = ZERO
         x = neighbors[e - 1]
+        if x < 0 or x >= n:  # checked before it indexes following[v, x] below
+            return False
         for i in range(s, e):
             y = neighbors[i]
             if y < 0 or y >= n or y == v or row & bit(y):

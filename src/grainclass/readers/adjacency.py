@@ -19,15 +19,14 @@ BOOLEANS = {"1": 1, "true": 1, "yes": 1, "0": 0, "false": 0, "no": 0}
 
 
 class _Chunk:
-    """Accumulates parsed lines until a batch is full."""
+    """Accumulates lines until a batch is full; the faces fields are parsed together at the end
+    by a compiled kernel (a line it cannot read is read again here, for the message)."""
 
     def __init__(self, source: str) -> None:
         self.source = source
         self.grain_id: list[str] = []
         self.location: list[int] = []
-        self.n_faces: list[int] = []
-        self.degrees: list[int] = []
-        self.neighbors: list[int] = []
+        self.faces: list[bytes] = []  # each grain's faces field, b"" when unreadable
         self.parse_errors: dict[int, str] = {}
         self.floats: dict[str, list[float]] = {key: [] for key in FLOAT_KEYS}
         self.boundary: list[int] = []
@@ -43,7 +42,6 @@ class _Chunk:
         try:
             if len(fields) < 2:
                 raise ValueError("expected a grain id, a TAB and the faces")
-            faces = _parse_faces(fields[1])
             for text in fields[2:]:
                 key, sep, value = text.partition("=")
                 if not sep or not key.strip():
@@ -57,16 +55,16 @@ class _Chunk:
         except ValueError as exc:
             self.add_unreadable(line_no, grain_id, str(exc))
             return
-        self._append(line_no, grain_id, faces, floats, boundary, values, None)
+        self._append(line_no, grain_id, fields[1].encode(), floats, boundary, values, None)
 
     def add_unreadable(self, line_no: int, grain_id: str, error: str) -> None:
-        self._append(line_no, grain_id, [], dict.fromkeys(FLOAT_KEYS, np.nan), -1, {}, error)
+        self._append(line_no, grain_id, b"", dict.fromkeys(FLOAT_KEYS, np.nan), -1, {}, error)
 
     def _append(
         self,
         line_no: int,
         grain_id: str,
-        faces: list[list[int]],
+        faces: bytes,
         floats: dict[str, float],
         boundary: int,
         values: dict[str, str],
@@ -75,12 +73,9 @@ class _Chunk:
         g = len(self.grain_id)
         self.grain_id.append(grain_id or f"line{line_no}")
         self.location.append(line_no)
+        self.faces.append(faces)
         if error is not None:
             self.parse_errors[g] = error
-        self.n_faces.append(len(faces))
-        for nbrs in faces:
-            self.degrees.append(len(nbrs))
-            self.neighbors.extend(nbrs)
         for key in FLOAT_KEYS:
             self.floats[key].append(floats[key])
         self.boundary.append(boundary)
@@ -91,14 +86,27 @@ class _Chunk:
                 column.append(None)
 
     def batch(self) -> GrainBatch:
+        from grainclass._kernels.text import _parse_faces as parse_fields
+
+        lengths = np.array([len(f) for f in self.faces], np.int64)
+        ends = np.cumsum(lengths + 1) - 1  # fields joined by one separator byte
+        starts = ends - lengths
+        buf = np.frombuffer(b"\n".join(self.faces) or b"\n", np.uint8)
+        n_faces = np.zeros(len(self), np.int64)
+        degrees = np.empty(len(buf) + 1, np.int64)
+        neighbors = np.empty(len(buf) + 1, np.int32)
+        faces, entries, bad = parse_fields(buf, starts, ends, n_faces, degrees, neighbors)
+        for g in np.flatnonzero(bad):
+            if g not in self.parse_errors:
+                self.parse_errors[int(g)] = _faces_error(self.faces[g].decode())
         return GrainBatch(
             source=self.source,
             grain_id=self.grain_id,
             location=np.asarray(self.location, np.int64),
             location_kind="line",
-            face_offsets=np.concatenate([[0], np.cumsum(self.n_faces, dtype=np.int64)]),
-            nbr_offsets=np.concatenate([[0], np.cumsum(self.degrees, dtype=np.int64)]),
-            neighbors=np.asarray(self.neighbors, np.int32),
+            face_offsets=np.concatenate([[0], np.cumsum(n_faces)]),
+            nbr_offsets=np.concatenate([[0], np.cumsum(degrees[:faces])]),
+            neighbors=neighbors[:entries],
             parse_errors=self.parse_errors,
             volume=np.asarray(self.floats["volume"], np.float64),
             area=np.asarray(self.floats["area"], np.float64),
@@ -107,19 +115,16 @@ class _Chunk:
         )
 
 
-def _parse_faces(text: str) -> list[list[int]]:
-    faces = text.strip().rstrip(";").split(";")
-    parsed = []
-    for f, face in enumerate(faces):
+def _faces_error(text: str) -> str:
+    """What is wrong with a faces field the kernel could not read."""
+    for f, face in enumerate(text.strip().rstrip(";").split(";")):
         tokens = face.split()
         if not tokens:
-            raise ValueError(f"face {f} lists no neighbours")
-        try:
-            parsed.append([int(t) for t in tokens])
-        except ValueError:
-            bad = next(t for t in tokens if not t.lstrip("-").isdigit())
-            raise ValueError(f"face {f}: {bad!r} is not a face index") from None
-    return parsed
+            return f"face {f} lists no neighbours"
+        for token in tokens:
+            if not token.isdigit():
+                return f"face {f}: {token!r} is not a face index"
+    return "unreadable faces"
 
 
 def read_adjacency(lines: Iterable[bytes], source: str, chunk_size: int) -> Iterator[GrainBatch]:
