@@ -23,7 +23,6 @@ KEYS = [
 COLUMNS = [*KEYS, schema.N_TRIANGLES, schema.WEINBERG, schema.ISOPERIMETRIC, schema.BOUNDARY]
 ROUND_LEVELS = range(7)
 TABLES = ("classes", "round", "split")  # printed by default; "geometry" on request
-ALL_TABLES = (*TABLES, "geometry")
 COUNT, TRIANGLES = "count", "triangles"
 Q_COUNT, Q_SUM, Q_SQUARES = "q_count", "q_sum", "q_squares"
 SUMS = [COUNT, TRIANGLES, Q_COUNT, Q_SUM, Q_SQUARES]
