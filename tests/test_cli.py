@@ -294,12 +294,3 @@ def test_no_types_leaves_weinberg_null_and_the_rest_equal(runner, tmp_path):
     assert (
         runner.invoke(cli, ["types", str(EXAMPLES / "polytopes.txt"), "--no-types"]).exit_code == 2
     )
-
-
-def test_summarize_compacts_its_running_totals_without_changing_them(monkeypatch, runner):
-    args = ["summarize", *map(str, [EXAMPLES / "polytopes.txt", EXAMPLES / "plantri-10.pc"])]
-    args += ["--format", "json", "--chunk-size", "5"]
-    plain = json.loads(runner.invoke(cli, args).stdout)
-    monkeypatch.setattr("grainclass.summary.COMPACT_EVERY", 2)
-    assert json.loads(runner.invoke(cli, args).stdout) == plain
-    assert plain["headline"]["types"] == 245

@@ -24,7 +24,6 @@ COLUMNS = [*KEYS, schema.N_TRIANGLES, schema.WEINBERG, schema.ISOPERIMETRIC, sch
 ROUND_LEVELS = range(7)
 TABLES = ("classes", "round", "split")  # printed by default; "geometry" on request
 COUNT, TRIANGLES = "count", "triangles"
-COMPACT_EVERY = 32  # batches between merges of the running tallies and type hashes
 Q_COUNT, Q_SUM, Q_SQUARES = "q_count", "q_sum", "q_squares"
 SUMS = [COUNT, TRIANGLES, Q_COUNT, Q_SUM, Q_SQUARES]
 
@@ -241,8 +240,6 @@ def summarize(
             table = table.filter(pc.invert(cut))
         tallies.append(tally(table))
         hashes.append(type_hashes(table))
-        if len(hashes) == COMPACT_EVERY:  # keep memory to the distinct types seen so far
-            tallies, hashes = [merge_tallies(tallies)], [np.unique(np.concatenate(hashes))]
     counts = merge_tallies(tallies)
     # None when no grain carries a Weinberg vector (classified with --no-types, or none ok).
     distinct = np.unique(np.concatenate(hashes)).size if any(h.size for h in hashes) else None
