@@ -97,7 +97,8 @@ def type_hashes(grains: pa.Table) -> np.ndarray:
     codes = codes.cast(pa.string())
     _, offsets, data = codes.buffers()
     starts = np.frombuffer(offsets, np.int32, len(codes) + 1, codes.offset * 4)
-    return _fnv1a(starts, np.frombuffer(data, np.uint8))
+    with np.errstate(over="ignore"):  # FNV wraps modulo 2**64 on purpose (seen without the JIT)
+        return _fnv1a(starts, np.frombuffer(data, np.uint8))
 
 
 def _headline(counts: pd.DataFrame, distinct_types: int | None) -> dict[str, float | int | None]:

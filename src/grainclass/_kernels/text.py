@@ -25,7 +25,9 @@ def _parse_faces(buf, starts, ends, n_faces, degrees, neighbors):
         f0, m0 = f, m
         value, in_number, degree = 0, False, 0
         for p in range(starts[g], ends[g] + 1):
-            c = buf[p] if p < ends[g] else SEMICOLON  # the field ends a face
+            c = (
+                int(buf[p]) if p < ends[g] else SEMICOLON
+            )  # the end closes a face; int(): no uint8 wrap
             if ZERO <= c <= NINE:
                 # Clamped: an index past int32 is out of range for any grain, as validation says.
                 value = min(value * 10 + (c - ZERO), LARGEST)
