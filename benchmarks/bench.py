@@ -154,25 +154,18 @@ def bench_kernel(sizes: list[int], work: Path) -> None:
 
 def write_adjacency(path: Path, n_vertices: int, count: int) -> None:
     """The first ``count`` triangulations with n vertices as adjacency text."""
+    from itertools import islice
+
     from grainclass.readers import read_dataset
+    from grainclass.readers.adjacency import adjacency_lines
 
     plantri = find_plantri()
     raw = path.with_suffix(".pc")
     subprocess.run([plantri, str(n_vertices), str(raw)], check=True, capture_output=True)
-    written = 0
+    batches = read_dataset(str(raw), chunk_size=100_000)
+    lines = (line for batch in batches for line in adjacency_lines(batch))
     with open(path, "w") as out:
-        for batch in read_dataset(str(raw), chunk_size=100_000):
-            for g in range(len(batch)):
-                if written == count:
-                    break
-                f0, f1 = batch.face_offsets[g], batch.face_offsets[g + 1]
-                offsets, neighbors = batch.nbr_offsets, batch.neighbors
-                faces = [
-                    " ".join(map(str, neighbors[offsets[f] : offsets[f + 1]]))
-                    for f in range(f0, f1)
-                ]
-                out.write(f"g{written}\t{';'.join(faces)}\n")
-                written += 1
+        out.writelines(islice(lines, count))
     raw.unlink()
 
 

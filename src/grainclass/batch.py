@@ -102,15 +102,32 @@ class GrainBatch:
         >>> GrainBatch.from_lists([cube]).n_faces.tolist()
         [6]
         """
-        n_faces = [len(faces) for faces in grains]
-        degrees = [len(nbrs) for faces in grains for nbrs in faces]
-        flat = [x for faces in grains for nbrs in faces for x in nbrs]
+        face_offsets, nbr_offsets, neighbors = csr_from_lists(grains)
         return cls(
             source=source,
             grain_id=grain_id if grain_id is not None else [str(i + 1) for i in range(len(grains))],
             location=np.arange(1, len(grains) + 1),
             location_kind="record",
-            face_offsets=np.concatenate([[0], np.cumsum(n_faces, dtype=np.int64)]),
-            nbr_offsets=np.concatenate([[0], np.cumsum(degrees, dtype=np.int64)]),
-            neighbors=np.asarray(flat, dtype=np.int32),
+            face_offsets=face_offsets,
+            nbr_offsets=nbr_offsets,
+            neighbors=neighbors,
         )
+
+
+def csr_from_lists(
+    grains: Sequence[Sequence[Sequence[int]]],
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """``(face_offsets, nbr_offsets, neighbors)`` of :class:`GrainBatch` from nested lists:
+    ``grains[g][f]`` lists the neighbours of face ``f`` of grain ``g``."""
+    n_faces = [len(faces) for faces in grains]
+    degrees = [len(nbrs) for faces in grains for nbrs in faces]
+    return (
+        np.concatenate([[0], np.cumsum(n_faces, dtype=np.int64)]),
+        np.concatenate([[0], np.cumsum(degrees, dtype=np.int64)]),
+        np.asarray([x for faces in grains for nbrs in faces for x in nbrs], np.int32),
+    )
+
+
+def tri_state(flags: Sequence[bool | None]) -> np.ndarray:
+    """True/False/None as the int8 1/0/-1 of :attr:`GrainBatch.boundary`."""
+    return np.array([-1 if flag is None else int(flag) for flag in flags], np.int8)

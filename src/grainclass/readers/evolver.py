@@ -27,7 +27,7 @@ from multiprocessing import get_context
 
 import numpy as np
 
-from grainclass.batch import GrainBatch
+from grainclass.batch import GrainBatch, csr_from_lists, tri_state
 from grainclass.errors import InputError
 
 SECTIONS = {"vertices", "edges", "faces", "facets", "bodies"}
@@ -419,18 +419,17 @@ class _Grain:
 
 def _batch(grains: list[_Grain]) -> GrainBatch:
     """One batch; each grain's ``source`` is its own file, so messages name the right one."""
+    face_offsets, nbr_offsets, neighbors = csr_from_lists([g.lists for g in grains])
     return GrainBatch(
         source=[g.path for g in grains],
         grain_id=[g.grain_id for g in grains],
         location=np.array([g.line for g in grains], np.int64),
         location_kind="line",
-        face_offsets=np.concatenate([[0], np.cumsum([len(g.lists) for g in grains])]),
-        nbr_offsets=np.concatenate(
-            [[0], np.cumsum([len(nbrs) for g in grains for nbrs in g.lists], dtype=np.int64)]
-        ),
-        neighbors=np.array([x for g in grains for nbrs in g.lists for x in nbrs], np.int32),
+        face_offsets=face_offsets,
+        nbr_offsets=nbr_offsets,
+        neighbors=neighbors,
         parse_errors={k: g.error for k, g in enumerate(grains) if g.error is not None},
         volume=np.array([g.volume for g in grains]),
         area=np.array([g.area for g in grains]),
-        boundary=np.array([-1 if g.boundary is None else int(g.boundary) for g in grains], np.int8),
+        boundary=tri_state([g.boundary for g in grains]),
     )

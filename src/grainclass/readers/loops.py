@@ -16,7 +16,7 @@ from collections.abc import Iterable, Iterator, Sequence
 
 import numpy as np
 
-from grainclass.batch import GrainBatch
+from grainclass.batch import GrainBatch, csr_from_lists, tri_state
 
 FLOAT_KEYS = ("volume", "area")
 
@@ -93,26 +93,20 @@ def batch_from_loops(
             errors[k] = error
             faces = []
         lists.append(faces)
+    face_offsets, nbr_offsets, neighbors = csr_from_lists(lists)
     return GrainBatch(
         source=source,
         grain_id=ids,
         location=np.asarray(locations, np.int64),
         location_kind=location_kind,
-        face_offsets=np.concatenate([[0], np.cumsum([len(f) for f in lists], dtype=np.int64)]),
-        nbr_offsets=np.concatenate(
-            [[0], np.cumsum([len(n) for f in lists for n in f], dtype=np.int64)]
-        ),
-        neighbors=np.asarray([x for f in lists for n in f for x in n], np.int32),
+        face_offsets=face_offsets,
+        nbr_offsets=nbr_offsets,
+        neighbors=neighbors,
         parse_errors=errors,
         volume=np.asarray(volumes, np.float64),
         area=np.asarray(areas, np.float64),
-        boundary=None if boundary is None else _tri_state(boundary),
+        boundary=None if boundary is None else tri_state(boundary),
     )
-
-
-def _tri_state(flags: Sequence[bool | None]) -> np.ndarray:
-    """True/False/None as the int8 1/0/-1 of ``GrainBatch.boundary``."""
-    return np.array([-1 if f is None else int(f) for f in flags], np.int8)
 
 
 def read_loops(lines: Iterable[bytes], source: str, chunk_size: int) -> Iterator[GrainBatch]:
