@@ -24,7 +24,7 @@ from grainclass._numba import njit
 
 
 @njit
-def _classify_general(n, off, nb, err, out, result, belts):
+def _classify_general(n, off, nb, err, out, at, result, belts):
     """Any grain: validate with diagnosis, then classify. ``result`` gets (status, family,
     fundamental, trees, depth, tree length)."""
     adj = np.zeros((n, n), np.uint8)
@@ -43,7 +43,7 @@ def _classify_general(n, off, nb, err, out, result, belts):
         parent = np.empty(n, np.int32)
         _parents_from_links(n, alive, removed_round, link, parent)
         result[3], result[4], result[5] = _forest_string(
-            n, removed_round, parent, out, _forest_scratch(n)
+            n, removed_round, parent, out, at, _forest_scratch(n)
         )
     elif result[1] == FLAG:
         _four_belts(n, off, nb, adj, belts)
@@ -82,7 +82,7 @@ def _classify_batch(
     path's scratch arrays are allocated once per call.
     """
     adj = np.empty(MAX_BITSET_FACES, np.uint64)
-    following = np.empty((MAX_BITSET_FACES, MAX_BITSET_FACES), np.uint8)
+    following = np.empty(MAX_BITSET_FACES * MAX_BITSET_FACES, np.uint8)
     link = np.empty(MAX_BITSET_FACES, np.uint64)
     removed_round = np.empty(MAX_BITSET_FACES, np.int32)
     parent = np.empty(MAX_BITSET_FACES, np.int32)
@@ -97,7 +97,6 @@ def _classify_batch(
             continue
         f0 = face_offsets[g]
         n = face_offsets[g + 1] - f0
-        out = tree_bytes[tree_offsets[g] : tree_offsets[g + 1]]
         if n <= max_small and _validate_small(n, nbr_offsets, neighbors, f0, adj, following):
             status[g] = OK
             consistent[g] = True
@@ -109,7 +108,7 @@ def _classify_batch(
                 family[g] = SC if _has_empty_triangle_small(adj, alive) else FLAG
                 _parents_small(n, alive, removed_round, link, parent)
                 trees_count[g], depth[g], tree_length[g] = _forest_string(
-                    n, removed_round, parent, out, scratch
+                    n, removed_round, parent, tree_bytes, tree_offsets[g], scratch
                 )
             elif _has_empty_triangle_small(adj, alive):
                 family[g] = SC
@@ -120,7 +119,7 @@ def _classify_batch(
         off = nbr_offsets[f0 : f0 + n + 1] - nbr_offsets[f0]
         nb = neighbors[nbr_offsets[f0] : nbr_offsets[f0 + n]]
         result[:] = -1
-        _classify_general(n, off, nb, err[g], out, result, belts[g])
+        _classify_general(n, off, nb, err[g], tree_bytes, tree_offsets[g], result, belts[g])
         status[g] = result[0]
         if result[0] == OK:
             family[g], fundamental[g] = result[1], result[2]

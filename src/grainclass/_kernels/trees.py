@@ -84,8 +84,9 @@ def _forest_scratch(n):
 
 
 @njit
-def _forest_string(n, removed_round, parent, out, scratch):
-    """Write the canonical forest string of the removed vertices into ``out`` (>= 3n bytes).
+def _forest_string(n, removed_round, parent, out, at, scratch):
+    """Write the canonical forest string of the removed vertices into ``out`` from ``at``
+    (3n bytes suffice; an offset, not a view: a view per grain costs reference counting).
 
     Nodes are the vertices with ``removed_round > 0``; ``parent`` is -1 for roots. ``scratch``
     comes from :func:`_forest_scratch`. Returns ``(n_trees, depth, length)``: depth is the number
@@ -136,11 +137,11 @@ def _forest_string(n, removed_round, parent, out, scratch):
             n_roots += 1
             depth = max(depth, height[v])
     _sort_slices(roots, n_roots, buf, start, length, True)
-    written = 0
+    written = at
     for r in range(n_roots):
         if r > 0:
             out[written] = PLUS
             written += 1
         v = roots[r]
         written = _copy(buf, start[v], length[v], out, written)
-    return n_roots, depth, written
+    return n_roots, depth, written - at
