@@ -51,7 +51,7 @@ def bench_pipelines(sizes: list[int], work: Path) -> None:
         "classify": f"{gc} classify - -o {out} -q",
         "classify --no-types": f"{gc} classify - -o {out} -q --no-types",
         "summarize": f"{gc} summarize - -q > /dev/null",
-        "summarize --no-types": f"{gc} summarize - -q --no-types > /dev/null",
+        "summarize --types": f"{gc} summarize - -q --types > /dev/null",
     }
     print("(a) plantri N > /dev/null against plantri N | grainclass ...: wall s, ratio, peak MB")
     for n in sizes:
@@ -79,6 +79,7 @@ def _kernel_inputs(batch):
             batch.neighbors,
             np.ones(g, bool),
             64,
+            True,
             np.zeros(g, np.int8),
             np.zeros(g, bool),
             np.zeros((g, 3), np.int64),
@@ -106,33 +107,43 @@ def _kernel_inputs(batch):
     }
 
 
+def _first_million(path: Path, raw: bool) -> list:
+    from grainclass.readers import read_dataset
+
+    batches = []
+    for batch in read_dataset(str(path), chunk_size=100_000, raw_planar_code=raw):
+        batches.append(batch)
+        if sum(len(b) for b in batches) >= 1_000_000:
+            break
+    return batches
+
+
 def bench_kernel(sizes: list[int], work: Path) -> None:
     from grainclass._kernels.batch import _classify_batch
     from grainclass._kernels.weinberg import _weinberg_batch
-    from grainclass.classification import classify
+    from grainclass.classification import classify, grain_codes
     from grainclass.parallel import run_ranges, set_jobs
-    from grainclass.readers import read_dataset
 
     plantri = find_plantri()
     print(
-        "(b) in process, M grains/s: classification kernel | Weinberg kernel | classify() | "
-        "classify(types=False)"
+        "(b) in process, M grains/s: census, grain_codes() on planar_code bytes | "
+        "classification kernel (CSR, with truncation-tree strings) | Weinberg kernel | "
+        "classify() | classify(types=False)"
     )
     for n in sizes:
         path = work / f"p{n}.pc"
         subprocess.run([plantri, str(n), str(path)], check=True, capture_output=True)
-        batches = []
-        for batch in read_dataset(str(path), chunk_size=100_000):
-            batches.append(batch)
-            if sum(len(b) for b in batches) >= 1_000_000:
-                break
+        records = _first_million(path, raw=True)
+        batches = _first_million(path, raw=False)
         grains = sum(len(b) for b in batches)
         inputs = [_kernel_inputs(b) for b in batches]
         classify(batches[0])
+        grain_codes(records[0])
         for threads in sorted({1, os.cpu_count() or 1}):
             set_jobs(threads)
             rates = []
             for run in (
+                lambda records=records: [grain_codes(r) for r in records],
                 lambda inputs=inputs: [
                     run_ranges(_classify_batch, i["n"], *i["classify"]) for i in inputs
                 ],

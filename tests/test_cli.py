@@ -217,10 +217,19 @@ def test_summarize_reads_standard_input(runner, grains_parquet):
 
 def test_summarize_classifies_raw_inputs_on_the_fly(runner, grains_parquet):
     raw = [str(EXAMPLES / "polytopes.txt"), str(EXAMPLES / "plantri-10.pc")]
-    from_raw = runner.invoke(cli, ["summarize", *raw, "--format", "json", "--chunk-size", "7"])
+    args = ["summarize", *raw, "--format", "json", "--chunk-size", "7"]
+    with_types = runner.invoke(cli, [*args, "--types"])
+    counted = runner.invoke(cli, args)
     from_parquet = runner.invoke(cli, ["summarize", str(grains_parquet), "--format", "json"])
-    assert from_raw.exit_code == 0
-    assert json.loads(from_raw.stdout) == json.loads(from_parquet.stdout)
+    assert with_types.exit_code == counted.exit_code == 0
+    expected = json.loads(from_parquet.stdout)
+    assert json.loads(with_types.stdout) == expected
+    # Without --types the raw inputs are only counted: everything but the distinct types.
+    assert expected["headline"].pop("types") == 245
+    assert json.loads(counted.stdout) == {
+        **expected,
+        "headline": {**expected["headline"], "types": None},
+    }
 
 
 def test_summarize_reads_raw_standard_input(runner):
@@ -290,7 +299,7 @@ def test_no_types_leaves_weinberg_null_and_the_rest_equal(runner, tmp_path):
         with_types.drop_columns(["weinberg", "symmetry", "chirality"])
     )
     summary = runner.invoke(cli, ["summarize", str(tmp_path / "p.parquet")])
-    assert summary.stdout.splitlines()[0].endswith("types not computed")
+    assert summary.stdout.splitlines()[0].endswith("types not computed (--types)")
     assert (
         runner.invoke(cli, ["types", str(EXAMPLES / "polytopes.txt"), "--no-types"]).exit_code == 2
     )

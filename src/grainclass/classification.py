@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 import pyarrow as pa
 
@@ -11,6 +13,7 @@ from grainclass._kernels.bits import MAX_BITSET_FACES
 from grainclass.arrow import repeated_string, string_array, strings_from_codes
 from grainclass.batch import GrainBatch
 from grainclass.parallel import run_ranges
+from grainclass.readers.planar_code import PlanarCodeRecords
 
 _MESSAGES = {
     codes.E_TOO_FEW_FACES: "{a} faces; a grain needs at least 4",
@@ -83,6 +86,98 @@ def _float_column(values: np.ndarray | None, length: int) -> pa.Array:
     return pa.array(values, pa.float64(), from_pandas=True)
 
 
+@dataclass(frozen=True)
+class GrainCodes:
+    """What the summaries count, per grain, as integer arrays (no strings, no Arrow).
+
+    ``status`` and ``family`` are codes of :mod:`grainclass._kernels.codes`, ``class_code`` an
+    index into :data:`grainclass.schema.CLASSES` (-1 when not ok), ``split_k`` is -1 unless
+    the grain is fundamental flag, ``n_faces`` -1 for an unreadable record.
+    """
+
+    n_faces: np.ndarray
+    status: np.ndarray
+    family: np.ndarray
+    truncations: np.ndarray
+    class_code: np.ndarray
+    split_k: np.ndarray
+    triangles: np.ndarray
+
+
+def grain_codes(batch: GrainBatch | PlanarCodeRecords) -> GrainCodes:
+    """Classify a batch for counting only: no truncation-forest strings, no types.
+
+    planar_code records are classified straight from their bytes (the census path).
+    """
+    from grainclass._kernels.batch import _classify_batch, _classify_records
+    from grainclass._kernels.columns import _triangle_counts
+
+    g = len(batch)
+    status = np.zeros(g, np.int8)
+    family = np.full(g, -1, np.int8)
+    fundamental = np.zeros(g, np.int32)
+    n_trees = np.zeros(g, np.int32)
+    belts = np.zeros((g, 3), np.int64)
+    scratch = (np.zeros(g, np.bool_), np.zeros((g, 3), np.int64))  # consistent, err
+    depth = np.zeros(g, np.int32)
+    if isinstance(batch, PlanarCodeRecords):
+        n_faces = np.zeros(g, np.int64)
+        triangles = np.zeros(g, np.int32)
+        run_ranges(
+            _classify_records,
+            g,
+            batch.buf,
+            batch.starts,
+            batch.big_endian,
+            n_faces,
+            triangles,
+            status,
+            *scratch,
+            family,
+            fundamental,
+            n_trees,
+            depth,
+            belts,
+        )
+    else:
+        n_faces = batch.n_faces
+        parsed = np.ones(g, np.bool_)
+        parsed[list(batch.parse_errors)] = False
+        no_strings = np.zeros(g + 1, np.int64), np.zeros(0, np.uint8), np.zeros(g, np.int64)
+        run_ranges(
+            _classify_batch,
+            g,
+            batch.face_offsets,
+            batch.nbr_offsets,
+            batch.neighbors,
+            parsed,
+            MAX_BITSET_FACES,
+            False,
+            status,
+            *scratch,
+            family,
+            fundamental,
+            n_trees,
+            depth,
+            belts,
+            *no_strings,
+        )
+        triangles = _triangle_counts(batch.face_offsets, batch.nbr_offsets, status == codes.OK)
+        n_faces = np.where(parsed, n_faces, -1)
+    ok = status == codes.OK
+    truncations = np.where(ok, n_faces - fundamental, -1)
+    is_flag = (family == codes.FLAG) & (truncations == 0)
+    return GrainCodes(
+        n_faces=n_faces,
+        status=status,
+        family=family,
+        truncations=truncations,
+        class_code=_class_codes(family, truncations, n_trees),
+        split_k=np.where(is_flag, belts[:, 0], -1),
+        triangles=triangles,
+    )
+
+
 def classify(
     batch: GrainBatch, max_bitset_faces: int = MAX_BITSET_FACES, types: bool = True
 ) -> pa.Table:
@@ -142,6 +237,7 @@ def classify(
         batch.neighbors,
         parsed,
         max_bitset_faces,
+        True,
         status,
         consistent,
         err,

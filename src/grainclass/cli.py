@@ -44,9 +44,10 @@ def cli() -> None:
     """
 
 
-def _input_options(*format_flags: str):
+def _input_options(*format_flags: str, types: bool = True):
     """Options shared by every command that reads grains; the input format goes by
-    ``format_flags`` (``--format`` is summarize's output format)."""
+    ``format_flags`` (``--format`` is summarize's output format), ``types`` is the default of
+    ``--types/--no-types``."""
     options = [
         click.option(
             *format_flags,
@@ -79,12 +80,11 @@ def _input_options(*format_flags: str):
         ),
         click.option("-q", "--quiet", is_flag=True, help="No progress or counts on stderr."),
         click.option(
-            "--no-types",
-            "types",
-            flag_value=False,
-            default=True,
-            help="Skip the Weinberg vectors (weinberg, symmetry, chirality): several times "
-            "faster for huge enumerations.",
+            "--types/--no-types",
+            default=types,
+            show_default=True,
+            help="Compute the Weinberg vectors (weinberg, symmetry, chirality) of raw inputs; "
+            "they cost several times the rest of the classification.",
         ),
     ]
 
@@ -193,7 +193,7 @@ def classify_cmd(
 )
 @click.option("-o", "--output", default="-", metavar="FILE", help="Write here instead of stdout.")
 @click.option("--include-boundary", is_flag=True, help="Count grains cut by a sample boundary too.")
-@_input_options("--input-format")
+@_input_options("--input-format", types=False)
 def summarize_cmd(
     grains: tuple[str, ...],
     table_name: str | None,
@@ -212,13 +212,14 @@ def summarize_cmd(
 
     GRAINS are per-grain Parquet tables from `grainclass classify`, or any input classify reads,
     classified on the fly without keeping per-grain rows: `plantri 14 | grainclass summarize -`.
-    Above the tables, one line gives the grains by status, the mean number of faces and the
-    percentage of faces that are triangles.
+    Above the tables, one line gives the grains by status, the mean number of faces, the
+    percentage of faces that are triangles and the number of distinct types (from Parquet
+    files that have them, or from raw inputs with --types).
     """
     from grainclass.errors import GrainclassError
-    from grainclass.pipeline import grain_tables
+    from grainclass.pipeline import tallies
     from grainclass.render import EXTENSIONS, render
-    from grainclass.summary import COLUMNS, TABLES, summarize
+    from grainclass.summary import TABLES, summarize
 
     fmt = output_format or EXTENSIONS.get(os.path.splitext(output)[1].lower(), "text")
     tables = (table_name,) if table_name else TABLES
@@ -229,7 +230,7 @@ def summarize_cmd(
     _set_jobs(jobs)
     in_fmt = None if input_format == "auto" else input_format
     try:
-        stream = grain_tables(list(grains), COLUMNS, in_fmt, chunk_size, triple_edges, types)
+        stream = tallies(list(grains), in_fmt, chunk_size, triple_edges, types, include_boundary)
         summary = summarize(_progress(quiet).wrap(stream), n_values, include_boundary)
     except GrainclassError as exc:
         raise click.ClickException(str(exc)) from None

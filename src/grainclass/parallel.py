@@ -1,27 +1,37 @@
-"""Running a batch kernel over grain ranges in threads.
+"""Both cores: kernels over grain ranges in threads, or whole batches in threads.
 
-The kernels release the GIL (``nogil=True``) and write disjoint rows per grain, so a batch is
-cut into one contiguous range per job and the ranges run at once on a thread pool.
+The kernels release the GIL (``nogil=True``) and write disjoint rows per grain. A single call
+(``classify(batch)`` from the library) cuts its batch into one contiguous range per job and runs
+the ranges at once. A stream of batches (the command line) runs whole batches at once instead,
+each on one thread, with results handed out in input order: no thread waits for another at
+every batch, which matters when a producer (plantri in a pipe) shares the cores.
 """
 
 from __future__ import annotations
 
+import collections
 import itertools
 import os
-from collections.abc import Callable
-from concurrent.futures import ThreadPoolExecutor
+import threading
+from collections.abc import Callable, Iterable, Iterator
+from concurrent.futures import Future, ThreadPoolExecutor
+from typing import TypeVar
+
+T = TypeVar("T")
+R = TypeVar("R")
 
 _jobs = os.cpu_count() or 1
-_pool: ThreadPoolExecutor | None = None
+_pools: dict[str, ThreadPoolExecutor] = {}
+_in_batch_worker = threading.local()
 
 
 def set_jobs(jobs: int) -> None:
     """Use ``jobs`` threads from now on (at least 1)."""
-    global _jobs, _pool
+    global _jobs
     _jobs = max(1, int(jobs))
-    if _pool is not None:
-        _pool.shutdown()
-        _pool = None
+    for pool in _pools.values():
+        pool.shutdown()
+    _pools.clear()
 
 
 def get_jobs() -> int:
@@ -29,15 +39,49 @@ def get_jobs() -> int:
     return _jobs
 
 
+def _pool(name: str) -> ThreadPoolExecutor:
+    if name not in _pools:
+        _pools[name] = ThreadPoolExecutor(_jobs, thread_name_prefix=f"grainclass-{name}")
+    return _pools[name]
+
+
 def run_ranges(kernel: Callable[..., object], n_items: int, *arrays: object) -> None:
-    """Call ``kernel(first, last, *arrays)`` over ``[0, n_items)`` cut into one range per job."""
-    global _pool
-    cuts = [n_items * k // _jobs for k in range(_jobs + 1)]
+    """Call ``kernel(first, last, *arrays)`` over ``[0, n_items)`` cut into one range per job
+    (one range only inside :func:`map_ordered`, whose batches already fill the cores)."""
+    jobs = 1 if getattr(_in_batch_worker, "active", False) else _jobs
+    cuts = [n_items * k // jobs for k in range(jobs + 1)]
     ranges = [(a, b) for a, b in itertools.pairwise(cuts) if b > a]
     if len(ranges) <= 1:
         kernel(0, n_items, *arrays)
         return
-    if _pool is None:
-        _pool = ThreadPoolExecutor(_jobs, thread_name_prefix="grainclass-kernel")
-    for future in [_pool.submit(kernel, a, b, *arrays) for a, b in ranges]:
+    pool = _pool("kernel")
+    for future in [pool.submit(kernel, a, b, *arrays) for a, b in ranges]:
         future.result()
+
+
+def _in_worker(function: Callable[[T], R], item: T) -> R:
+    _in_batch_worker.active = True
+    return function(item)
+
+
+def map_ordered(function: Callable[[T], R], items: Iterable[T]) -> Iterator[R]:
+    """``function(item)`` for every item, in input order, up to one item per job at once.
+
+    At most one more item than there are jobs is in flight, so memory stays bounded. An
+    exception is raised where its item's result would have come.
+    """
+    if _jobs == 1:
+        yield from map(function, items)
+        return
+    pool = _pool("batch")
+    pending: collections.deque[Future[R]] = collections.deque()
+    try:
+        for item in items:
+            pending.append(pool.submit(_in_worker, function, item))
+            if len(pending) > _jobs:
+                yield pending.popleft().result()
+        while pending:
+            yield pending.popleft().result()
+    finally:
+        for future in pending:
+            future.cancel()

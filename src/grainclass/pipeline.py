@@ -11,13 +11,17 @@ import sys
 import threading
 import time
 from collections.abc import Iterable, Iterator, Sequence
-from typing import TypeVar
+from typing import TYPE_CHECKING, TypeVar
 
 import pyarrow as pa
 
 from grainclass.classification import classify
+from grainclass.parallel import map_ordered
 from grainclass.readers import DEFAULT_CHUNK_SIZE, read_dataset, stdin
 from grainclass.readers.evolver import DEFAULT_TRIPLE_EDGES
+
+if TYPE_CHECKING:
+    from grainclass.summary import Tally
 
 T = TypeVar("T")
 _DONE = object()
@@ -69,8 +73,8 @@ def classified_tables(
     types: bool = True,
 ) -> Iterator[pa.Table]:
     """Per-grain tables for every batch of the inputs, in input order."""
-    for batch in prefetch(read_dataset(paths, format, chunk_size, triple_edges)):
-        yield classify(batch, types=types)
+    batches = prefetch(read_dataset(paths, format, chunk_size, triple_edges))
+    yield from map_ordered(lambda batch: classify(batch, types=types), batches)
 
 
 def is_parquet(path: str) -> bool:
@@ -101,6 +105,35 @@ def grain_tables(
         else:
             for table in classified_tables([path], format, chunk_size, triple_edges, types):
                 yield table.select(columns)
+
+
+def tallies(
+    paths: Sequence[str],
+    format: str | None = None,
+    chunk_size: int = DEFAULT_CHUNK_SIZE,
+    triple_edges: tuple[str, str] = DEFAULT_TRIPLE_EDGES,
+    types: bool = False,
+    include_boundary: bool = False,
+) -> Iterator[Tally]:
+    """What ``summarize`` counts, batch by batch: classified Parquet files are tallied from their
+    rows; other inputs are classified on the fly, for counting only unless ``types`` asks for
+    the Weinberg vectors (planar_code straight from its bytes)."""
+    from grainclass.parquet import iter_grain_tables
+    from grainclass.summary import COLUMNS, tally_batch, tally_table
+
+    for path in paths:
+        if is_parquet(path):
+            tables: Iterable[pa.Table] = iter_grain_tables(path, COLUMNS)
+        elif types:
+            tables = classified_tables([path], format, chunk_size, triple_edges, types)
+        else:
+            batches = read_dataset([path], format, chunk_size, triple_edges, raw_planar_code=True)
+            yield from map_ordered(
+                lambda batch: tally_batch(batch, include_boundary), prefetch(batches)
+            )
+            continue
+        for table in tables:
+            yield tally_table(table.select(COLUMNS), include_boundary)
 
 
 class Progress:

@@ -36,7 +36,11 @@ def headline(summary: Summary) -> str:
         f"non_simple {h['non_simple']}, invalid {h['invalid']}); "
         f"mean faces per grain {h['mean_faces']:.3f}; "
         f"triangles {h['triangle_faces_percent']:.2f}% of faces; "
-        + (f"{h['types']} distinct types" if h["types"] is not None else "types not computed")
+        + (
+            f"{h['types']} distinct types"
+            if h["types"] is not None
+            else "types not computed (--types)"
+        )
         + (
             f"; {h['boundary_excluded']} boundary grains left out"
             if h.get("boundary_excluded")

@@ -3,7 +3,8 @@
 from __future__ import annotations
 
 from collections.abc import Iterable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 import pandas as pd
@@ -11,6 +12,11 @@ import pyarrow as pa
 import pyarrow.compute as pc
 
 from grainclass import schema
+from grainclass._kernels import codes as kernel_codes
+
+if TYPE_CHECKING:
+    from grainclass.batch import GrainBatch
+    from grainclass.readers.planar_code import PlanarCodeRecords
 
 KEYS = [
     schema.STATUS,
@@ -43,6 +49,22 @@ class Summary:
         return getattr(self, name)
 
 
+@dataclass(frozen=True)
+class Tally:
+    """A batch of grains reduced to what the tables need: grain counts (with their triangles and
+    isoperimetric sums) by (status, n_faces, family, class, round_k, split_k), the 64-bit hashes
+    of its distinct Weinberg vectors, and how many grains were left out as cut by a boundary.
+    """
+
+    counts: pd.DataFrame
+    grains: int
+    type_hashes: np.ndarray = field(default_factory=lambda: np.zeros(0, np.uint64))
+    boundary_excluded: int = 0
+
+    def __len__(self) -> int:
+        return self.grains
+
+
 def tally(grains: pa.Table) -> pd.DataFrame:
     """Grains counted by (status, n_faces, family, class, round_k, split_k), with their triangles.
 
@@ -73,6 +95,88 @@ def tally(grains: pa.Table) -> pd.DataFrame:
         "q2_sum": Q_SQUARES,
     }
     return counts.rename(columns=names)
+
+
+def tally_table(grains: pa.Table, include_boundary: bool = False) -> Tally:
+    """A :class:`Tally` of per-grain rows (as ``grainclass classify`` writes them)."""
+    excluded = 0
+    if not include_boundary and schema.BOUNDARY in grains.column_names:
+        cut = pc.fill_null(grains.column(schema.BOUNDARY), False)
+        excluded = pc.sum(cut).as_py() or 0
+        grains = grains.filter(pc.invert(cut))
+    return Tally(tally(grains), len(grains), type_hashes(grains), excluded)
+
+
+def _names(codes: np.ndarray, names: tuple[str, ...]) -> np.ndarray:
+    """Words for codes, None for -1."""
+    return np.array([None, *names], dtype=object)[codes.astype(np.int64) + 1]
+
+
+def group_rows(columns: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Distinct rows of a non-negative int64 matrix: ``(first, inverse)`` as ``np.unique``
+    gives them (first occurrence of each distinct row, and each row's group).
+
+    Rows are packed into one int64 per row when the column maxima allow (fast); otherwise
+    they are compared whole.
+    """
+    radices = [int(c.max()) + 1 if len(c) else 1 for c in columns.T]
+    if float(np.prod([float(r) for r in radices])) < 2.0**62:
+        keys = np.zeros(len(columns), np.int64)
+        for column, radix in zip(columns.T, radices, strict=True):
+            keys = keys * radix + column
+        _, first, inverse = np.unique(keys, return_index=True, return_inverse=True)
+    else:
+        _, first, inverse = np.unique(columns, axis=0, return_index=True, return_inverse=True)
+    return first, inverse.reshape(-1)
+
+
+def tally_batch(batch: GrainBatch | PlanarCodeRecords, include_boundary: bool = False) -> Tally:
+    """A :class:`Tally` of raw grains, classified for counting only (no per-grain rows, no
+    strings, no types): the census path of ``summarize``."""
+    from grainclass.classification import grain_codes
+
+    codes = grain_codes(batch)
+    volume, area = getattr(batch, "volume", None), getattr(batch, "area", None)
+    boundary = getattr(batch, "boundary", None)
+    keep = np.ones(len(batch), np.bool_)
+    if boundary is not None and not include_boundary:
+        keep = boundary != 1
+    ok = codes.status == kernel_codes.OK
+    q = np.full(len(batch), np.nan)
+    if volume is not None and area is not None:
+        with np.errstate(divide="ignore", invalid="ignore"):
+            q = np.where(ok, 36 * np.pi * volume**2 / area**3, np.nan)
+    round_k = np.where(ok & (codes.family != kernel_codes.SC), codes.truncations, -1)
+    # Codes shifted to be >= 0 (-1 is null), one row per kept grain.
+    keys = np.stack(
+        [codes.status, codes.family, codes.class_code, codes.n_faces, round_k, codes.split_k],
+        axis=1,
+    ).astype(np.int64)[keep] + np.array([0, 1, 1, 1, 1, 1])
+    first, group = group_rows(keys)
+    q, triangles = q[keep], codes.triangles[keep]
+    has_q = ~np.isnan(q)
+    groups = len(first)
+
+    def sums(weights: np.ndarray) -> np.ndarray:
+        return np.bincount(group, weights, minlength=groups)
+
+    rows = keys[first] - np.array([0, 1, 1, 1, 1, 1])
+    counts = pd.DataFrame(
+        {
+            schema.STATUS: _names(rows[:, 0], kernel_codes.STATUS_NAMES),
+            schema.N_FACES: np.where(rows[:, 3] >= 0, rows[:, 3], np.nan),
+            schema.FAMILY: _names(rows[:, 1], kernel_codes.FAMILY_NAMES),
+            schema.CLASS: _names(rows[:, 2], schema.CLASSES),
+            schema.ROUND_K: np.where(rows[:, 4] >= 0, rows[:, 4], np.nan),
+            schema.SPLIT_K: np.where(rows[:, 5] >= 0, rows[:, 5], np.nan),
+            TRIANGLES: sums(triangles).astype(np.int64),
+            COUNT: np.bincount(group, minlength=groups),
+            Q_COUNT: sums(has_q).astype(np.int64),
+            Q_SUM: sums(np.where(has_q, q, 0.0)),
+            Q_SQUARES: sums(np.where(has_q, q * q, 0.0)),
+        }
+    )
+    return Tally(counts, int(keep.sum()), boundary_excluded=int(len(batch) - keep.sum()))
 
 
 def merge_tallies(tallies: list[pd.DataFrame]) -> pd.DataFrame:
@@ -180,6 +284,7 @@ def geometry_table(counts: pd.DataFrame) -> pd.DataFrame:
     ok["round"] = (
         ok[schema.ROUND_K].astype("Int64").astype(str).where(ok[schema.FAMILY] != "sc", "sc")
     )
+    ok[schema.N_FACES] = ok[schema.N_FACES].astype("int64")  # float where a tally had nulls
     rows = []
     for by, column in ((schema.N_FACES, schema.N_FACES), (schema.ROUND_K, "round")):
         sums = ok.groupby(column)[[Q_COUNT, Q_SUM, Q_SQUARES]].sum()
@@ -202,7 +307,7 @@ def geometry_table(counts: pd.DataFrame) -> pd.DataFrame:
 
 
 def summarize(
-    grains: pa.Table | Iterable[pa.Table],
+    grains: pa.Table | Iterable[pa.Table | Tally],
     n_values: tuple[int, ...] = (),
     include_boundary: bool = False,
 ) -> Summary:
@@ -210,14 +315,15 @@ def summarize(
 
     Parameters
     ----------
-    grains : pyarrow.Table or iterable of pyarrow.Table
-        Rows as written by ``grainclass classify`` (at least the columns in ``COLUMNS``); an
-        iterable is consumed one table at a time, so a stream of batches needs little memory.
+    grains : pyarrow.Table, or iterable of pyarrow.Table or Tally
+        Rows as written by ``grainclass classify`` (at least the columns in ``COLUMNS``), or
+        batches already tallied (:func:`tally_batch`); an iterable is consumed one item at a
+        time, so a stream of batches needs little memory.
     n_values : tuple of int
         Numbers of faces for which the round table gets a row of its own.
     include_boundary : bool
         Count grains cut by a sample boundary too (they are left out by default: their faces
-        there are cuts, not grain boundaries).
+        there are cuts, not grain boundaries). Tallies carry their own choice.
 
     Returns
     -------
@@ -231,21 +337,16 @@ def summarize(
     >>> s.classes[["n", "all", "flag"]].values.tolist()
     [['6', 1, 1], ['total', 1, 1]]
     """
-    tables = [grains] if isinstance(grains, pa.Table) else grains
-    tallies, hashes = [], []
-    excluded = 0
-    for table in tables:
-        if not include_boundary and schema.BOUNDARY in table.column_names:
-            cut = pc.fill_null(table.column(schema.BOUNDARY), False)
-            excluded += pc.sum(cut).as_py() or 0
-            table = table.filter(pc.invert(cut))
-        tallies.append(tally(table))
-        hashes.append(type_hashes(table))
-    counts = merge_tallies(tallies)
-    # None when no grain carries a Weinberg vector (classified with --no-types, or none ok).
+    items = [grains] if isinstance(grains, pa.Table) else grains
+    tallies = [
+        item if isinstance(item, Tally) else tally_table(item, include_boundary) for item in items
+    ]
+    counts = merge_tallies([t.counts for t in tallies])
+    hashes = [t.type_hashes for t in tallies]
+    # None when no grain carries a Weinberg vector (no types computed, or none ok).
     distinct = np.unique(np.concatenate(hashes)).size if any(h.size for h in hashes) else None
     headline = _headline(counts, distinct)
-    headline["boundary_excluded"] = int(excluded)
+    headline["boundary_excluded"] = sum(t.boundary_excluded for t in tallies)
     return Summary(
         headline=headline,
         classes=class_counts(counts),

@@ -1,21 +1,25 @@
-"""The batch kernel: one compiled call classifies every grain of a :class:`GrainBatch`.
+"""The batch kernels: one compiled call classifies every grain of a batch.
 
-Grains with at most 64 faces whose lists pass the fast check run on bitsets with per-block
+Grains with at most 64 faces whose lists pass the fast check run on bitsets with per-call
 scratch (``small.py``); every other grain takes the general path, which allocates per grain but
-diagnoses anything (``validate.py``, ``reduce.py``, ``belts.py``).
+diagnoses anything (``validate.py``, ``reduce.py``, ``belts.py``). Two layouts come in: CSR
+arrays (:func:`_classify_batch`, any reader) and plantri's planar_code bytes
+(:func:`_classify_records`, parsed record by record into scratch, for the census).
 """
 
 import numpy as np
 
 from grainclass._kernels.belts import _four_belts
-from grainclass._kernels.bits import MAX_BITSET_FACES, popcount
+from grainclass._kernels.bits import MAX_BITSET_FACES, ONE, ZERO, lowest, popcount
 from grainclass._kernels.codes import E_PARSE, FLAG, INVALID, OK, SC, STACKED
+from grainclass._kernels.planar_code import _entry
 from grainclass._kernels.reduce import _has_empty_triangle, _reduce
 from grainclass._kernels.small import (
     _four_belts_small,
     _has_empty_triangle_small,
     _parents_small,
     _reduce_small,
+    _validate_record,
     _validate_small,
 )
 from grainclass._kernels.trees import _forest_scratch, _forest_string, _parents_from_links
@@ -24,9 +28,23 @@ from grainclass._numba import njit
 
 
 @njit
-def _classify_general(n, off, nb, err, out, at, result, belts):
+def _work():
+    """Scratch for :func:`_classify_grain`, allocated once per kernel call."""
+    return (
+        np.empty(MAX_BITSET_FACES, np.uint64),  # adjacency bitsets
+        np.empty(MAX_BITSET_FACES * MAX_BITSET_FACES, np.uint8),  # next neighbour around a face
+        np.empty(MAX_BITSET_FACES, np.uint64),  # link of each removed face
+        np.empty(MAX_BITSET_FACES, np.int32),  # round it was removed in
+        np.empty(MAX_BITSET_FACES, np.int32),  # its parent in the truncation forest
+        _forest_scratch(MAX_BITSET_FACES),
+        np.zeros(6, np.int64),  # result of the general path
+    )
+
+
+@njit
+def _classify_general(n, off, nb, strings, err, out, at, result, belts):
     """Any grain: validate with diagnosis, then classify. ``result`` gets (status, family,
-    fundamental, trees, depth, tree length)."""
+    fundamental, trees, depth, tree length); without ``strings`` only the number of trees."""
     adj = np.zeros((n, n), np.uint8)
     result[0] = _validate(n, off, nb, adj, err)
     if result[0] != OK:
@@ -42,22 +60,76 @@ def _classify_general(n, off, nb, err, out, at, result, belts):
     if result[2] < n:
         parent = np.empty(n, np.int32)
         _parents_from_links(n, alive, removed_round, link, parent)
-        result[3], result[4], result[5] = _forest_string(
-            n, removed_round, parent, out, at, _forest_scratch(n)
-        )
+        if strings:
+            result[3], result[4], result[5] = _forest_string(
+                n, removed_round, parent, out, at, _forest_scratch(n)
+            )
+        else:
+            result[3] = np.sum((parent < 0) & ~alive)
     elif result[1] == FLAG:
         _four_belts(n, off, nb, adj, belts)
 
 
 @njit
-def _classify_batch(
-    first,
-    last,
-    face_offsets,
-    nbr_offsets,
+def _roots_small(alive, n, link):
+    """Number of truncation trees: removed faces whose link holds no removed face."""
+    removed = ~alive & ((ONE << np.uint64(n)) - ONE if n < 64 else ~ZERO)
+    roots = 0
+    m = removed
+    while m:
+        v = lowest(m)
+        m &= m - ONE
+        roots += (link[v] & removed) == ZERO
+    return roots
+
+
+@njit
+def _classify_small(
+    g,
+    n,
+    strings,
+    work,
+    family,
+    fundamental,
+    trees_count,
+    depth,
+    belts,
+    tree_at,
+    tree_bytes,
+    tree_length,
+):
+    """Classify grain g, validated by the fast path (its bitsets are in ``work``)."""
+    adj, _, link, removed_round, parent, scratch, _ = work
+    alive = _reduce_small(n, adj, removed_round, link)
+    fundamental[g] = popcount(alive)
+    if fundamental[g] == 4:
+        family[g] = STACKED
+    elif fundamental[g] < n:
+        family[g] = SC if _has_empty_triangle_small(adj, alive) else FLAG
+        if strings:
+            _parents_small(n, alive, removed_round, link, parent)
+            trees_count[g], depth[g], tree_length[g] = _forest_string(
+                n, removed_round, parent, tree_bytes, tree_at, scratch
+            )
+        else:
+            trees_count[g] = _roots_small(alive, n, link)
+    elif _has_empty_triangle_small(adj, alive):
+        family[g] = SC
+    else:
+        family[g] = FLAG
+        _four_belts_small(n, adj, belts[g])
+
+
+@njit
+def _classify_grain(
+    g,
+    n,
+    offsets,
+    o0,
     neighbors,
-    parsed,
     max_small,
+    strings,
+    work,
     status,
     consistent,
     err,
@@ -70,58 +142,214 @@ def _classify_batch(
     tree_bytes,
     tree_length,
 ):
-    """Classify grains ``first:last``; row ``g`` of every output is written for grain ``g`` only,
-    so disjoint ranges can run in threads at once (see :mod:`grainclass.parallel`).
+    """Classify grain ``g``: n faces, face f's neighbours at
+    ``neighbors[offsets[o0 + f]:offsets[o0 + f + 1]]``; writes row g of every output."""
+    family[g] = -1
+    depth[g] = 0
+    at = tree_offsets[g] if strings else 0
+    if n <= max_small and _validate_small(n, offsets, neighbors, o0, work[0], work[1]):
+        status[g] = OK
+        consistent[g] = True
+        _classify_small(
+            g,
+            n,
+            strings,
+            work,
+            family,
+            fundamental,
+            trees_count,
+            depth,
+            belts,
+            at,
+            tree_bytes,
+            tree_length,
+        )
+        return
+    result = work[6]
+    off = offsets[o0 : o0 + n + 1] - offsets[o0]
+    nb = neighbors[offsets[o0] : offsets[o0 + n]]
+    result[:] = -1
+    _classify_general(n, off, nb, strings, err[g], tree_bytes, at, result, belts[g])
+    status[g] = result[0]
+    if result[0] == OK:
+        family[g], fundamental[g] = result[1], result[2]
+        if result[3] >= 0:
+            trees_count[g], depth[g], tree_length[g] = result[3], result[4], result[5]
+
+
+@njit
+def _classify_batch(
+    first,
+    last,
+    face_offsets,
+    nbr_offsets,
+    neighbors,
+    parsed,
+    max_small,
+    strings,
+    status,
+    consistent,
+    err,
+    family,
+    fundamental,
+    trees_count,
+    depth,
+    belts,
+    tree_offsets,
+    tree_bytes,
+    tree_length,
+):
+    """Classify grains ``first:last`` of a CSR batch; row ``g`` of every output is written for
+    grain ``g`` only, so disjoint ranges can run in threads at once (see
+    :mod:`grainclass.parallel`).
 
     Layout: grain g has faces ``face_offsets[g]:face_offsets[g+1]``; face f has the local
     neighbour indices ``neighbors[nbr_offsets[f]:nbr_offsets[f+1]]``. ``err`` is int64[G, 3]
     (code, a, b), ``consistent`` marks grains whose lists were already oriented one way,
-    ``belts`` int64[G, 3] (split_k, count, weight), ``tree_bytes`` holds 3n bytes
-    per grain from ``tree_offsets[g]``. Family is -1 for grains that are not ok, depth 0 for
-    fundamental ones. Grains with more than ``max_small`` faces skip the fast path; the fast
-    path's scratch arrays are allocated once per call.
+    ``belts`` int64[G, 3] (split_k, count, weight), ``tree_bytes`` holds 3n bytes per grain from
+    ``tree_offsets[g]``. Family is -1 for grains that are not ok, depth 0 for fundamental ones.
+    Grains with more than ``max_small`` faces skip the fast path. Without ``strings`` the
+    truncation forests are only counted (trees_count; depth and tree bytes are left alone).
     """
-    adj = np.empty(MAX_BITSET_FACES, np.uint64)
-    following = np.empty(MAX_BITSET_FACES * MAX_BITSET_FACES, np.uint8)
-    link = np.empty(MAX_BITSET_FACES, np.uint64)
-    removed_round = np.empty(MAX_BITSET_FACES, np.int32)
-    parent = np.empty(MAX_BITSET_FACES, np.int32)
-    scratch = _forest_scratch(MAX_BITSET_FACES)
-    result = np.zeros(6, np.int64)
+    work = _work()
     for g in range(first, last):
-        family[g] = -1
-        depth[g] = 0
         if not parsed[g]:
+            family[g] = -1
+            depth[g] = 0
             status[g] = INVALID
             err[g, 0] = E_PARSE
             continue
         f0 = face_offsets[g]
-        n = face_offsets[g + 1] - f0
-        if n <= max_small and _validate_small(n, nbr_offsets, neighbors, f0, adj, following):
-            status[g] = OK
-            consistent[g] = True
-            alive = _reduce_small(n, adj, removed_round, link)
-            fundamental[g] = popcount(alive)
-            if fundamental[g] == 4:
-                family[g] = STACKED
-            elif fundamental[g] < n:
-                family[g] = SC if _has_empty_triangle_small(adj, alive) else FLAG
-                _parents_small(n, alive, removed_round, link, parent)
-                trees_count[g], depth[g], tree_length[g] = _forest_string(
-                    n, removed_round, parent, tree_bytes, tree_offsets[g], scratch
-                )
-            elif _has_empty_triangle_small(adj, alive):
-                family[g] = SC
-            else:
-                family[g] = FLAG
-                _four_belts_small(n, adj, belts[g])
+        _classify_grain(
+            g,
+            face_offsets[g + 1] - f0,
+            nbr_offsets,
+            f0,
+            neighbors,
+            max_small,
+            strings,
+            work,
+            status,
+            consistent,
+            err,
+            family,
+            fundamental,
+            trees_count,
+            depth,
+            belts,
+            tree_offsets,
+            tree_bytes,
+            tree_length,
+        )
+
+
+@njit
+def _classify_records(
+    first,
+    last,
+    buf,
+    starts,
+    big_endian,
+    n_faces,
+    triangles,
+    status,
+    consistent,
+    err,
+    family,
+    fundamental,
+    trees_count,
+    depth,
+    belts,
+):
+    """As :func:`_classify_batch` without strings, straight from planar_code records: record r
+    is ``buf[starts[r]:starts[r + 1]]`` (complete, as ``planar_code._scan`` found it).
+    ``n_faces[r]`` gets its vertex count, ``triangles[r]`` its vertices of degree 3 (the
+    grain's triangular faces) when it is ok.
+
+    A triangulation in 1-byte entries with at most 64 vertices is validated in place
+    (:func:`small._validate_record`); any other record is parsed into scratch CSR arrays and
+    takes the same way as a CSR grain, with its exact diagnosis.
+    """
+    work = _work()
+    adj = work[0]
+    offsets = np.empty(MAX_BITSET_FACES + 1, np.int64)
+    neighbors = np.empty(MAX_BITSET_FACES * MAX_BITSET_FACES, np.int32)
+    no_trees = np.zeros(1, np.int64)
+    no_bytes = np.zeros(0, np.uint8)
+    for r in range(first, last):
+        p = starts[r]
+        wide = buf[p] == 0
+        width = 2 if wide else 1
+        q = p + 1 if wide else p
+        n = _entry(buf, q, wide, big_endian)
+        q += width
+        n_faces[r] = n
+        family[r] = -1
+        depth[r] = 0
+        # 1 + n + (6n - 12) bytes: a triangulation's worth of entries.
+        if (
+            not wide
+            and n <= MAX_BITSET_FACES
+            and starts[r + 1] - p == 7 * n - 11
+            and _validate_record(buf, q, n, adj, work[1])
+        ):
+            status[r] = OK
+            consistent[r] = True
+            cubic = 0
+            for v in range(n):
+                cubic += popcount(adj[v]) == 3
+            triangles[r] = cubic
+            _classify_small(
+                r,
+                n,
+                False,
+                work,
+                family,
+                fundamental,
+                trees_count,
+                depth,
+                belts,
+                0,
+                no_bytes,
+                no_trees,
+            )
             continue
-        off = nbr_offsets[f0 : f0 + n + 1] - nbr_offsets[f0]
-        nb = neighbors[nbr_offsets[f0] : nbr_offsets[f0 + n]]
-        result[:] = -1
-        _classify_general(n, off, nb, err[g], tree_bytes, tree_offsets[g], result, belts[g])
-        status[g] = result[0]
-        if result[0] == OK:
-            family[g], fundamental[g] = result[1], result[2]
-            if result[3] >= 0:
-                trees_count[g], depth[g], tree_length[g] = result[3], result[4], result[5]
+        if n + 1 > offsets.shape[0]:
+            offsets = np.empty(n + 1, np.int64)
+        if starts[r + 1] - p > neighbors.shape[0]:
+            neighbors = np.empty(starts[r + 1] - p, np.int32)
+        m = 0
+        offsets[0] = 0
+        cubic = 0
+        for f in range(n):
+            x = _entry(buf, q, wide, big_endian)
+            q += width
+            while x != 0:
+                neighbors[m] = x - 1
+                m += 1
+                x = _entry(buf, q, wide, big_endian)
+                q += width
+            offsets[f + 1] = m
+            cubic += offsets[f + 1] - offsets[f] == 3
+        _classify_grain(
+            r,
+            n,
+            offsets,
+            0,
+            neighbors,
+            MAX_BITSET_FACES,
+            False,
+            work,
+            status,
+            consistent,
+            err,
+            family,
+            fundamental,
+            trees_count,
+            depth,
+            belts,
+            no_trees,
+            no_bytes,
+            no_trees,
+        )
+        triangles[r] = cubic if status[r] == OK else 0

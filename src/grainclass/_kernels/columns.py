@@ -32,6 +32,18 @@ def _p_vectors(face_offsets, nbr_offsets, ok):
 
 
 @njit
+def _triangle_counts(face_offsets, nbr_offsets, ok):
+    """Triangular faces per grain (int32[G]; 0 when not ok)."""
+    n_grains = face_offsets.shape[0] - 1
+    triangles = np.zeros(n_grains, np.int32)
+    for g in range(n_grains):
+        if ok[g]:
+            for f in range(face_offsets[g], face_offsets[g + 1]):
+                triangles[g] += nbr_offsets[f + 1] - nbr_offsets[f] == 3
+    return triangles
+
+
+@njit
 def _compact(slot_offsets, data, lengths):
     """Strings written at ``data[slot_offsets[g]:]`` with ``lengths[g]`` bytes, packed tightly.
 

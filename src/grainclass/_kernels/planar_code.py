@@ -19,8 +19,9 @@ def _entry(buf, p, wide, big_endian):
 
 
 @njit
-def _scan(buf, big_endian, max_records):
-    """Count complete records from the start of ``buf``.
+def _scan(buf, big_endian, max_records, starts):
+    """Count complete records from the start of ``buf``; record r starts at ``starts[r]``
+    (int64[max_records + 1]; the entry after the last record is where it ends).
 
     Returns ``(records, vertices, entries, consumed)``: entries counts neighbours, and
     ``consumed`` is the number of bytes of complete records (a cut-off record is left unread).
@@ -28,6 +29,7 @@ def _scan(buf, big_endian, max_records):
     size = buf.shape[0]
     p = 0
     records = vertices = entries = 0
+    starts[0] = 0
     while p < size and records < max_records:
         wide = buf[p] == 0
         width = 2 if wide else 1
@@ -51,6 +53,7 @@ def _scan(buf, big_endian, max_records):
         vertices += n
         entries += nbrs
         p = q
+        starts[records] = p
     return records, vertices, entries, p
 
 

@@ -28,18 +28,34 @@ def _component(adj, start, allowed):
 
 
 @njit
+def _corner(v, x, y, adj, following):
+    """Record the corner (v, x, y) of face v: y follows x around v (``following[64 v + x]``).
+
+    Returns 1 if v is the largest of the three and the triangle closes consistently,
+    next_x(y) = v and next_y(v) = x (the lists of x and y are complete by then), else 0.
+    """
+    following[64 * v + x] = y
+    if x < v and y < v:  # a third of the corners: a branch beats computing it for all
+        return (
+            ((adj[x] & bit(y)) != ZERO)
+            & ((adj[y] & bit(v)) != ZERO)
+            & (following[64 * x + y] == v)
+            & (following[64 * y + v] == x)
+        )
+    return 0
+
+
+@njit
 def _validate_small(n, nbr_offsets, neighbors, f0, adj, following):
     """True if grain (faces from ``f0``) is certainly a simple grain with consistent cyclic lists.
 
-    Fills ``adj`` (uint64[>=n]) and ``following`` (uint8[64 * 64]: the neighbour after x around
-    v at ``64 v + x``). One pass over the darts checks 6n - 12 of them, indices in range, no
-    repeats, and counts the corners (v, x, y = next_v(x)) whose triangle closes consistently,
-    next_x(y) = v and next_y(v) = x, each triangle once, at its largest vertex (the other two
-    lists are complete by then). A dart determines its triangle, so 2n - 4 closed triangles use
-    every dart: every dual face is a triangle, each face is in the list of each of its
-    neighbours, F = 2n - 4 and, with connectivity, the Euler characteristic is 2: a sphere.
-    Branch-free inside a list (indices masked to 0..63 so that bad input cannot index outside
-    the tables; it is rejected at the end).
+    Fills ``adj`` (uint64[>=n]) and ``following`` (uint8[64 * 64]). One pass over the darts
+    checks 6n - 12 of them, indices in range, no repeats, and counts the corners whose
+    triangle closes (:func:`_corner`), each triangle once, at its largest vertex. A dart
+    determines its triangle, so 2n - 4 closed triangles use every dart: every dual face is a
+    triangle, each face is in the list of each of its neighbours, F = 2n - 4 and, with
+    connectivity, the Euler characteristic is 2: a sphere. Indices are masked to 0..63 so that
+    bad input cannot index outside the tables; it is rejected at the end.
     """
     if nbr_offsets[f0 + n] - nbr_offsets[f0] != 6 * n - 12:
         return False
@@ -55,15 +71,47 @@ def _validate_small(n, nbr_offsets, neighbors, f0, adj, following):
             y = neighbors[i]
             bad |= (y < 0) | (y >= n)
             y &= 63
-            b = bit(y)
-            bad |= (row & b) != ZERO
-            row |= b
-            following[64 * v + x] = y
-            closes = (x < v) & (y < v) & ((adj[x] & b) != ZERO) & ((adj[y] & bit(v)) != ZERO)
-            closes &= (following[64 * x + y] == v) & (following[64 * y + v] == x)
-            closed += closes
+            bad |= (row & bit(y)) != ZERO
+            row |= bit(y)
+            closed += _corner(v, x, y, adj, following)
             x = y
         bad |= (row & bit(v)) != ZERO
+        adj[v] = row
+    if bad or closed != 2 * n - 4:
+        return False
+    return _component(adj, ONE, full(n)) == full(n)
+
+
+@njit
+def _validate_record(buf, p, n, adj, following):
+    """:func:`_validate_small` reading a planar_code record of 1-byte entries in place: the
+    lists of faces 0..n-1 start at ``buf[p]``, 1-based, each ended by a 0, with 6n - 12 entries
+    in all (the caller checks the record's length). The corner that closes a list, (v, last,
+    first), is recorded after the others.
+    """
+    bad = False
+    closed = 0
+    for v in range(n):
+        if buf[p] == 0:
+            return False
+        first = int(buf[p]) - 1
+        bad |= first >= n
+        first &= 63
+        x = first
+        row = bit(x)
+        p += 1
+        while buf[p] != 0:
+            y = int(buf[p]) - 1
+            bad |= y >= n
+            y &= 63
+            bad |= (row & bit(y)) != ZERO
+            row |= bit(y)
+            closed += _corner(v, x, y, adj, following)
+            x = y
+            p += 1
+        p += 1
+        closed += _corner(v, x, first, adj, following)
+        bad |= ((row & bit(v)) != ZERO) | (popcount(row) < 3)
         adj[v] = row
     if bad or closed != 2 * n - 4:
         return False

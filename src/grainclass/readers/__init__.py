@@ -20,7 +20,7 @@ from grainclass.readers.adjacency import read_adjacency
 from grainclass.readers.evolver import DEFAULT_TRIPLE_EDGES, read_evolver
 from grainclass.readers.loops import read_loops
 from grainclass.readers.neper import looks_like_neper, read_neper
-from grainclass.readers.planar_code import read_planar_code
+from grainclass.readers.planar_code import PlanarCodeRecords, read_planar_code
 from grainclass.readers.voro import looks_like_voro, read_voro
 
 FORMATS = ("adjacency", "planar_code", "evolver", "voro", "neper", "loops")
@@ -119,7 +119,8 @@ def read_dataset(
     format: str | None = None,
     chunk_size: int = DEFAULT_CHUNK_SIZE,
     triple_edges: tuple[str, str] = DEFAULT_TRIPLE_EDGES,
-) -> Iterator[GrainBatch]:
+    raw_planar_code: bool = False,
+) -> Iterator[GrainBatch | PlanarCodeRecords]:
     """Read grains from one or more inputs, in order, as batches.
 
     Parameters
@@ -133,10 +134,12 @@ def read_dataset(
         Grains per batch at most.
     triple_edges : (str, str)
         Surface Evolver only: the edge attribute and value marking triple lines.
+    raw_planar_code : bool
+        Leave planar_code records as bytes (:class:`PlanarCodeRecords`), for the census path.
 
     Yields
     ------
-    GrainBatch
+    GrainBatch or PlanarCodeRecords
 
     Raises
     ------
@@ -166,7 +169,7 @@ def read_dataset(
                 if fmt == "evolver":
                     raise InputError(path, "Surface Evolver input must be a file or a folder")
                 if fmt == "planar_code":
-                    yield from read_planar_code(stream, path, chunk_size)
+                    yield from read_planar_code(stream, path, chunk_size, raw_planar_code)
                 elif fmt == "voro":
                     yield from read_voro(stream, path, chunk_size)
                 elif fmt == "neper":

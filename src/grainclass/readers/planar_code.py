@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from collections.abc import Iterator
+from dataclasses import dataclass
 from typing import BinaryIO
 
 import numpy as np
@@ -17,6 +18,24 @@ HEADERS = {
 BLOCK_BYTES = 1 << 22
 
 
+@dataclass(frozen=True)
+class PlanarCodeRecords:
+    """Complete planar_code records left as bytes, for kernels that parse them in passing.
+
+    Record ``r`` (1-based position ``first_record + r`` in the stream) is
+    ``buf[starts[r]:starts[r + 1]]``.
+    """
+
+    source: str
+    first_record: int
+    buf: np.ndarray
+    starts: np.ndarray
+    big_endian: bool
+
+    def __len__(self) -> int:
+        return len(self.starts) - 1
+
+
 def _read_header(stream: BinaryIO, head: bytes) -> tuple[bool, bytes]:
     """Strip an optional header; returns (big_endian, the bytes read past it)."""
     for header, big_endian in HEADERS.items():
@@ -25,7 +44,9 @@ def _read_header(stream: BinaryIO, head: bytes) -> tuple[bool, bytes]:
     return False, head
 
 
-def read_planar_code(stream: BinaryIO, source: str, chunk_size: int) -> Iterator[GrainBatch]:
+def read_planar_code(
+    stream: BinaryIO, source: str, chunk_size: int, raw: bool = False
+) -> Iterator[GrainBatch | PlanarCodeRecords]:
     """Parse a planar_code stream into batches of at most ``chunk_size`` triangulations.
 
     Parameters
@@ -36,12 +57,14 @@ def read_planar_code(stream: BinaryIO, source: str, chunk_size: int) -> Iterator
         The input's name, used in messages.
     chunk_size : int
         Triangulations per batch.
+    raw : bool
+        Yield the records as :class:`PlanarCodeRecords` instead of parsing them into CSR.
 
     Yields
     ------
-    GrainBatch
+    GrainBatch or PlanarCodeRecords
         Grain ids are the 1-based positions in the stream; a record cut off by the end of the
-        input becomes an unreadable grain with its own row.
+        input becomes an unreadable grain with its own row (a GrainBatch, also when ``raw``).
     """
     from grainclass._kernels.planar_code import _fill, _scan
     from grainclass.arrow import decimal_strings
@@ -55,7 +78,8 @@ def read_planar_code(stream: BinaryIO, source: str, chunk_size: int) -> Iterator
             at_end = not block
             pending += block
         buf = np.frombuffer(pending, np.uint8)
-        records, vertices, entries, consumed = _scan(buf, big_endian, chunk_size)
+        starts = np.empty(chunk_size + 1, np.int64)
+        records, vertices, entries, consumed = _scan(buf, big_endian, chunk_size, starts)
         if records == 0:
             if at_end:
                 if pending:
@@ -64,6 +88,13 @@ def read_planar_code(stream: BinaryIO, source: str, chunk_size: int) -> Iterator
             block = stream.read(BLOCK_BYTES)  # one record longer than a block: read on
             at_end = not block
             pending += block
+            continue
+        if raw:
+            yield PlanarCodeRecords(
+                source, record, buf[:consumed], starts[: records + 1], big_endian
+            )
+            record += records
+            pending = pending[consumed:]
             continue
         face_offsets = np.empty(records + 1, np.int64)
         nbr_offsets = np.empty(vertices + 1, np.int64)

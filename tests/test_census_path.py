@@ -1,0 +1,136 @@
+"""The census path: planar_code classified straight from its bytes, counted without per-grain rows.
+
+It must agree, grain for grain, with the CSR path that ``classify`` takes (itself checked
+against the reference implementation and the paper), on plantri's triangulations, on planar
+graphs that are not triangulations, and on damaged records.
+"""
+
+from __future__ import annotations
+
+import io
+import random
+import struct
+
+import numpy as np
+import pytest
+
+from grainclass.classification import grain_codes
+from grainclass.pipeline import tallies
+from grainclass.readers.planar_code import PlanarCodeRecords, read_planar_code
+from grainclass.summary import group_rows, summarize, tally_batch
+
+FIELDS = ("n_faces", "status", "family", "truncations", "class_code", "split_k", "triangles")
+
+
+def _both_paths(data: bytes, chunk_size: int = 1000):
+    """grain_codes of every record, read as bytes and read as CSR batches."""
+    raw = list(read_planar_code(io.BytesIO(data), "x", chunk_size, raw=True))
+    csr = list(read_planar_code(io.BytesIO(data), "x", chunk_size))
+    assert [len(b) for b in raw] == [len(b) for b in csr]
+    return [grain_codes(b) for b in raw], [grain_codes(b) for b in csr]
+
+
+def _assert_same(data: bytes) -> int:
+    raw, csr = _both_paths(data)
+    for a, b in zip(raw, csr, strict=True):
+        for name in FIELDS:
+            np.testing.assert_array_equal(getattr(a, name), getattr(b, name), err_msg=name)
+    return sum(len(a.status) for a in raw)
+
+
+def _record(lists: list[list[int]]) -> bytes:
+    """A 1-byte planar_code record from 0-based neighbour lists."""
+    return bytes([len(lists)] + [x for nbrs in lists for x in [*(y + 1 for y in nbrs), 0]])
+
+
+def _bipyramid(k: int) -> list[list[int]]:
+    """The k-gonal bipyramid (the dual of the k-gonal prism): k + 2 vertices, cyclic lists."""
+    north, south = k, k + 1
+    ring = [[(i - 1) % k, north, (i + 1) % k, south] for i in range(k)]
+    return [*ring, list(range(k)), list(reversed(range(k)))]
+
+
+@pytest.mark.parametrize("n", range(4, 12))
+def test_bytes_and_csr_paths_agree_on_every_triangulation(plantri_output, n):
+    data = plantri_output(n).read_bytes()
+    assert _assert_same(data) > 0
+
+
+@pytest.mark.parametrize(("n", "flags"), [(8, "-p"), (9, "-pc2"), (7, "-pc1m1")])
+def test_bytes_and_csr_paths_agree_on_planar_graphs_that_are_not_triangulations(
+    plantri_output, n, flags
+):
+    data = plantri_output(n, flags).read_bytes()
+    raw, _ = _both_paths(data)
+    assert any((codes.status != 0).any() for codes in raw)  # most are not simple grains
+    _assert_same(data)
+
+
+def test_bytes_and_csr_paths_agree_on_damaged_records(plantri_output):
+    data = plantri_output(11).read_bytes()
+    header = b">>planar_code<<"
+    records = []
+    pos = len(header)
+    while pos < len(data):
+        n = data[pos]
+        end = pos + 1
+        zeros = 0
+        while zeros < n:
+            zeros += data[end] == 0
+            end += 1
+        records.append(bytearray(data[pos:end]))
+        pos = end
+    rng = random.Random(20261122)
+    damaged = []
+    for record in rng.sample(records, 400):
+        entries = [i for i in range(1, len(record)) if record[i]]
+        at = rng.choice(entries)
+        record[at] = rng.choice([record[at] % 10 + 1, 11, 12, 70, 255])  # other, or out of range
+        damaged.append(bytes(record))
+    assert _assert_same(header + b"".join(damaged)) == 400
+
+
+def test_large_and_wide_records_take_the_general_way():
+    prism_dual = _bipyramid(68)  # 70 faces: beyond the 64-face bitsets
+    wide = b"\x00" + struct.pack("<H", 6)
+    for nbrs in _bipyramid(4):
+        wide += b"".join(struct.pack("<H", x + 1) for x in nbrs) + struct.pack("<H", 0)
+    data = b">>planar_code<<" + _record(prism_dual) + _record(_bipyramid(5))
+    raw, _ = _both_paths(data)
+    assert raw[0].n_faces.tolist() == [70, 7]
+    # The 68- and 5-gonal prisms: flag, fundamental, two triangles.
+    assert raw[0].status.tolist() == [0, 0]
+    assert raw[0].triangles.tolist() == [0, 0]
+    assert raw[0].truncations.tolist() == [0, 0]
+    _assert_same(data)
+    wide_codes = [grain_codes(b) for b in read_planar_code(io.BytesIO(wide), "x", 10, raw=True)]
+    assert wide_codes[0].n_faces.tolist() == [6]
+    assert wide_codes[0].split_k.tolist() == [1]  # the cube: split type 1:1
+
+
+def test_summary_from_bytes_equals_summary_from_classified_rows(plantri_output):
+    from grainclass.pipeline import classified_tables
+
+    path = str(plantri_output(10))
+    counted = summarize(tallies([path]))
+    from_rows = summarize(classified_tables([path], types=False))
+    for name in ("classes", "round", "split"):
+        assert counted.table(name).equals(from_rows.table(name)), name
+    assert counted.headline == from_rows.headline
+
+
+def test_cut_off_record_is_counted_as_invalid(plantri_output):
+    data = plantri_output(8).read_bytes()
+    parts = list(read_planar_code(io.BytesIO(data[:-3]), "x", 1000, raw=True))
+    assert isinstance(parts[0], PlanarCodeRecords)
+    tally = tally_batch(parts[-1])
+    assert tally.counts["status"].tolist() == ["invalid"]
+
+
+def test_group_rows_packs_or_compares_whole_rows():
+    rows = np.array([[1, 2], [0, 5], [1, 2], [0, 5], [3, 3]])
+    for scale in (1, 2**40):  # 2**40: too wide to pack two columns into one int64
+        first, inverse = group_rows(rows * scale)
+        distinct = np.array([[0, 5], [1, 2], [3, 3]]) * scale
+        assert (rows * scale)[first].tolist() == distinct.tolist()
+        assert inverse.tolist() == [1, 0, 1, 0, 2]
