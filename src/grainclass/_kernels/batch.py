@@ -83,7 +83,7 @@ def _roots_small(alive, n, link):
     return roots
 
 
-@njit
+@njit(inline="always")
 def _classify_small(
     g,
     n,
@@ -120,7 +120,7 @@ def _classify_small(
         _four_belts_small(n, adj, belts[g])
 
 
-@njit
+@njit(inline="always")
 def _classify_grain(
     g,
     n,

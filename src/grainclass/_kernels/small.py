@@ -27,7 +27,7 @@ def _component(adj, start, allowed):
     return comp
 
 
-@njit
+@njit(inline="always")
 def _corner(v, x, y, adj, following):
     """Record the corner (v, x, y) of face v: y follows x around v (``following[64 v + x]``).
 
