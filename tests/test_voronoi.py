@@ -184,6 +184,7 @@ def test_voro_command_line_output_gives_the_same_grains(tmp_path):
     # The Debian voro++ program on the seeds grainclass voronoi draws (scaled to its box).
     n, seed = 400, 5
     points = np.random.default_rng(seed).random((n, 3)) * 1024
+    points = points[np.argsort(points[:, 2])]  # grainclass numbers its seeds from the bottom up
     seeds = tmp_path / "seeds"
     np.savetxt(seeds, np.column_stack([np.arange(n), points]), fmt="%d %.17g %.17g %.17g")
     subprocess.run(
@@ -198,3 +199,50 @@ def test_voro_command_line_output_gives_the_same_grains(tmp_path):
     assert by_id.column("grain_id").to_pylist() == sorted(ours.column("grain_id").to_pylist())
     ours = ours.take(pc.sort_indices(ours, [("grain_id", "ascending")]))
     assert by_id.select(keys).equals(ours.select(keys))
+
+
+def _grains(n: int, seed: int, **kwargs) -> tuple[pa.Table, VoronoiReport]:
+    report = VoronoiReport()
+    batches = list(poisson_voronoi(n, seed=seed, report=report, **kwargs))
+    return pa.concat_tables(classify(b) for b in batches), report
+
+
+@pytest.fixture(scope="module")
+def whole_3000():
+    return _grains(3000, 11, slab_seeds=10**9)
+
+
+@pytest.mark.parametrize("slab_seeds", [1000, 700])
+def test_slabs_give_the_grains_of_one_whole_tessellation(whole_3000, slab_seeds):
+    whole, _ = whole_3000
+    slabbed, report = _grains(3000, 11, slab_seeds=slab_seeds)
+    assert (report.cells, report.bad_corners, report.one_sided_faces) == (3000, 0, 0)
+    assert report.volume == pytest.approx(1.0, rel=1e-12)
+    assert slabbed.select(["grain_id", *KEYS]).equals(whole.select(["grain_id", *KEYS]))
+    for column in ("volume", "area"):
+        np.testing.assert_allclose(
+            slabbed.column(column).to_numpy(), whole.column(column).to_numpy(), rtol=1e-10
+        )
+
+
+def test_a_slab_whose_margin_is_too_thin_is_done_again(whole_3000, monkeypatch):
+    # Half a seed spacing of margin: corners' empty spheres reach past it, the check sees it.
+    monkeypatch.setattr("grainclass.voronoi.MARGIN_SPACINGS", 0.5)
+    slabbed, report = _grains(3000, 11, slab_seeds=1000)
+    assert report.one_sided_faces == 0
+    assert slabbed.select(["grain_id", *KEYS]).equals(whole_3000[0].select(["grain_id", *KEYS]))
+
+
+def test_seeds_closer_than_voro_can_separate_are_refused():
+    from grainclass.errors import GrainclassError
+    from grainclass.voronoi import SAFETY, _check_spacing
+
+    rng = np.random.default_rng(0)
+    points = rng.random((1000, 3)) * 1024
+    _check_spacing(points, 1024.0)
+    across = points.copy()
+    across[7] = [1024 - SAFETY / 4, 5.0, 5.0]  # close to seed 8 through the periodic wrap
+    across[8] = [SAFETY / 4, 5.0, 5.0 + SAFETY / 4]
+    for bad in (np.vstack([points, points[3] + SAFETY / 2]), across):
+        with pytest.raises(GrainclassError, match="closer"):
+            _check_spacing(bad, 1024.0)

@@ -5,20 +5,38 @@ Voro++ (through pyvoro2) merges vertices with an absolute tolerance suited to bo
 faces seen from one side only. The seeds are therefore scaled by a power of two (exact in
 floating point) to a box of side about 1000, and volumes and areas scaled back. Every cell is
 then checked: three faces at each corner, and each face seen from both of its cells.
+
+Large tessellations go slab by slab. pyvoro2 hands back every cell as Python dicts and lists
+(about 8 KB a cell, and most of its time; its own checks of the input in Python take longer than
+Voro++ itself), so all cells at once would not fit in 2 GB. A slab of the box is tessellated
+with the seeds of a margin on either side (x and y stay periodic) by pyvoro2's Voro++ call
+directly, on the cores in parallel; only the face loops are asked for, and the corners are
+computed from the seeds (``_kernels/voronoi.py``). A slab cell is the true periodic cell when
+the empty sphere of each of its corners stays within the seeds present: this is checked for
+every corner, and a slab that fails is done again with twice the margin. The input checks that
+pyvoro2 would make (no two seeds within its safety distance) are made here, vectorized.
 """
 
 from __future__ import annotations
 
+import gc
 import itertools
 import math
 from collections import Counter
 from collections.abc import Iterator
+from concurrent.futures import Future, ProcessPoolExecutor
+from contextlib import contextmanager
 from dataclasses import dataclass
+from multiprocessing import get_context
 
 import numpy as np
 
 from grainclass.batch import GrainBatch
-from grainclass.readers.loops import batch_from_loops
+from grainclass.errors import GrainclassError
+
+SLAB_SEEDS = 50_000  # seeds per slab at most; below two slabs' worth, one call does it all
+MARGIN_SPACINGS = 3.0  # seeds around a slab, in mean seed spacings (a failed check doubles it)
+SAFETY = 1e-5  # pyvoro2 refuses seeds closer than this (in the scaled box)
 
 
 @dataclass
@@ -31,19 +49,13 @@ class VoronoiReport:
     volume: float = 0.0
 
 
-def _polygon_areas(vertices: np.ndarray, loops: list[list[int]]) -> float:
-    """Total area of planar polygons (fanned from their first corner)."""
-    fans = np.array([(p[0], b, c) for p in loops for b, c in itertools.pairwise(p[1:])])
-    a, b, c = vertices[fans[:, 0]], vertices[fans[:, 1]], vertices[fans[:, 2]]
-    return 0.5 * float(np.linalg.norm(np.cross(b - a, c - a), axis=1).sum())
-
-
 def poisson_voronoi(
     n_seeds: int,
     seed: int | None = None,
     box: float = 1.0,
     chunk_size: int = 50_000,
     report: VoronoiReport | None = None,
+    slab_seeds: int = SLAB_SEEDS,
 ) -> Iterator[GrainBatch]:
     """Batches of the cells of a periodic Poisson-Voronoi tessellation of uniform random seeds.
 
@@ -59,23 +71,79 @@ def poisson_voronoi(
         Grains per batch.
     report : VoronoiReport, optional
         Filled with the checks' counts and the total volume.
+    slab_seeds : int
+        Tessellate slabs of at most about this many seeds at a time (module docstring).
 
     Yields
     ------
     GrainBatch
-        Grain ids are the seeds' 0-based positions; volumes and areas come with every grain.
+        Grain ids are the seeds' 0-based ranks by z (the uniform random seeds are numbered from
+        the bottom of the box up); volumes and areas come with every grain.
     """
-    import pyvoro2
-
     report = report if report is not None else VoronoiReport()
     points = np.random.default_rng(seed).random((n_seeds, 3)) * box
+    # Seeds numbered from the bottom of the box up: a slab holds consecutive ids, so grains
+    # come out in id order slab after slab, written while later slabs are computed.
+    points = points[np.argsort(points[:, 2], kind="stable")]
     scale = 2.0 ** round(math.log2(1000.0 / box))
     side = box * scale
-    cells = pyvoro2.compute(
-        points * scale,
-        domain=pyvoro2.OrthorhombicCell(((0.0, side),) * 3, periodic=(True, True, True)),
-        output="cells",
-    )
+    slabs = -(-n_seeds // slab_seeds)
+    margin = MARGIN_SPACINGS * side / n_seeds ** (1 / 3)
+    source = f"voronoi:{n_seeds}:{seed}"
+    if slabs < 2 or side / slabs + 2 * margin >= side:
+        yield from _whole(points * scale, side, scale, source, chunk_size, report)
+        return
+    _check_spacing(points * scale, side)
+    pairs = []  # (seed, neighbour) of every face, for the check that faces are mutual
+    for grains in _tessellate_slabs(points * scale, side, slabs, margin):
+        pairs.append(grains["pairs"])
+        yield from _slab_batches(grains, scale, source, chunk_size, report)
+    owner, adjacent = np.concatenate(pairs, axis=1)
+    forth, back = owner * n_seeds + adjacent, adjacent * n_seeds + owner
+    if not np.array_equal(np.sort(forth), np.sort(back)):
+        report.one_sided_faces += int((~np.isin(back, forth)).sum())
+
+
+@contextmanager
+def _gc_paused() -> Iterator[None]:
+    """No cyclic garbage collection while pyvoro2 builds and we read its millions of lists and
+    dicts (none of them in cycles): the collector's passes over them took 60% of the time."""
+    enabled = gc.isenabled()
+    gc.disable()
+    try:
+        yield
+    finally:
+        if enabled:
+            gc.enable()
+
+
+def _polygon_areas(vertices: np.ndarray, loops: list[list[int]]) -> float:
+    """Total area of planar polygons (fanned from their first corner)."""
+    fans = np.array([(p[0], b, c) for p in loops for b, c in itertools.pairwise(p[1:])])
+    a, b, c = vertices[fans[:, 0]], vertices[fans[:, 1]], vertices[fans[:, 2]]
+    return 0.5 * float(np.linalg.norm(np.cross(b - a, c - a), axis=1).sum())
+
+
+def _whole(
+    points: np.ndarray,
+    side: float,
+    scale: float,
+    source: str,
+    chunk_size: int,
+    report: VoronoiReport,
+) -> Iterator[GrainBatch]:
+    """The whole periodic box in one pyvoro2 call (small tessellations); ``points`` scaled to
+    a box of side ``side``, ``scale`` times the user's."""
+    import pyvoro2
+
+    from grainclass.readers.loops import batch_from_loops
+
+    with _gc_paused():
+        cells = pyvoro2.compute(
+            points,
+            domain=pyvoro2.OrthorhombicCell(((0.0, side),) * 3, periodic=(True, True, True)),
+            output="cells",
+        )
     cells.sort(key=lambda cell: cell["id"])
     seen_from = Counter(
         (cell["id"], face["adjacent_cell"]) for cell in cells for face in cell["faces"]
@@ -92,14 +160,175 @@ def poisson_voronoi(
             seen_from[(face["adjacent_cell"], cell["id"])] == 0 for face in cell["faces"]
         )
         area = _polygon_areas(vertices, loops) / scale**2
-        pending.append((str(cell["id"]), cell["id"], loops, cell["volume"] / scale**3, area, None))
+        volume = cell["volume"] / scale**3
+        pending.append((str(cell["id"]), cell["id"], loops, volume, area, None))
         if len(pending) >= chunk_size:
-            yield _batch(pending, n_seeds, seed)
+            yield batch_from_loops(pending, source, "record", [False] * len(pending))
             pending = []
     if pending:
-        yield _batch(pending, n_seeds, seed)
+        yield batch_from_loops(pending, source, "record", [False] * len(pending))
 
 
-def _batch(pending: list, n_seeds: int, seed: int | None) -> GrainBatch:
-    # Periodic: no grain is cut by a sample boundary.
-    return batch_from_loops(pending, f"voronoi:{n_seeds}:{seed}", "record", [False] * len(pending))
+def _check_spacing(points: np.ndarray, side: float) -> None:
+    """Refuse seeds closer than pyvoro2's safety distance (periodic), as pyvoro2 would.
+
+    Sorted by x, a close pair is within SAFETY in x: only such neighbours are compared.
+    """
+    order = np.argsort(points[:, 0], kind="stable")
+    xs = points[order, 0]
+    wrapped = np.concatenate([xs, xs[: np.searchsorted(xs, SAFETY, "right")] + side])
+    order = np.concatenate([order, order[: len(wrapped) - len(xs)]])
+    for lag in itertools.count(1):
+        close = np.flatnonzero(wrapped[lag:] - wrapped[:-lag] <= SAFETY)
+        if not len(close):
+            return
+        delta = points[order[close + lag]] - points[order[close]]
+        delta -= side * np.round(delta / side)
+        if (np.einsum("ij,ij->i", delta, delta) <= SAFETY**2).any():
+            raise GrainclassError(
+                "two seeds closer than Voro++ can separate; choose another --seed"
+            )
+
+
+def _tessellate_slabs(points: np.ndarray, side: float, slabs: int, margin: float) -> Iterator[dict]:
+    """Every slab's grains (:func:`_slab`), bottom to top, computed on worker processes; a slab
+    where a corner's empty sphere left the seeds present is done again with twice the margin."""
+    from grainclass.parallel import get_jobs
+
+    with ProcessPoolExecutor(min(get_jobs(), slabs), mp_context=get_context("spawn")) as pool:
+        futures: list[Future | None] = [
+            pool.submit(_slab, points, side, k, slabs, margin) for k in range(slabs)
+        ]
+        for k, future in enumerate(futures):
+            assert future is not None
+            futures[k] = None  # the result goes once its grains are out
+            wider = margin
+            result = future.result()
+            while result["redo"]:
+                wider *= 2
+                if 2 * wider + side / slabs >= side:
+                    raise GrainclassError(
+                        f"slab {k} of {slabs} needs seeds from all around the box: "
+                        "tessellate more seeds at a time (larger slab_seeds)"
+                    )
+                result = pool.submit(_slab, points, side, k, slabs, wider).result()
+            yield result
+
+
+def _slab(points: np.ndarray, side: float, k: int, slabs: int, margin: float) -> dict:
+    """The grains of the seeds with z in slab k of ``slabs``, from a Voro++ call on those seeds
+    and the seeds within ``margin`` of the slab (periodic in z too), walls above and below."""
+    from pyvoro2 import _core
+
+    from grainclass._kernels.voronoi import BAD_CORNER, OUTSIDE, WALL, _voronoi_grains
+
+    z0, z1 = side * k / slabs, side * (k + 1) / slabs
+    low, high = z0 - margin, z1 + margin
+    lift = (points[:, 2] - low) % side
+    band = np.flatnonzero(lift < high - low)
+    band_points = points[band].copy()
+    band_points[:, 2] = low + lift[band]
+    first, last = np.searchsorted(points[:, 2], [z0, z1])  # seeds are in z order
+    inside = (band >= first) & (band < last)
+    per_block = 5.0  # seeds per Voro++ block, as pyvoro2 chooses them
+    length = (side * side * (high - low) * per_block / len(band)) ** (1 / 3)
+    blocks = tuple(max(1, round(extent / length)) for extent in (side, side, high - low))
+    with _gc_paused():
+        cells = _core.compute_box_standard(
+            band_points,
+            np.arange(len(band), dtype=np.int32),
+            ((0.0, side), (0.0, side), (low, high)),
+            blocks,
+            (True, True, False),
+            8,
+            (False, False, True),  # faces only: no corner positions, no corner adjacency
+        )
+        cells = [cell for cell in cells if inside[cell["id"]]]
+        faces = [face for cell in cells for face in cell["faces"]]
+        loops = [face["vertices"] for face in faces]
+        cell_seed = np.array([cell["id"] for cell in cells], np.int64)
+        face_offsets = np.zeros(len(cells) + 1, np.int64)
+        np.cumsum([len(cell["faces"]) for cell in cells], out=face_offsets[1:])
+        adjacent = np.array([face["adjacent_cell"] for face in faces], np.int64)
+        loop_offsets = np.zeros(len(faces) + 1, np.int64)
+        np.cumsum([len(loop) for loop in loops], out=loop_offsets[1:])
+        loop_corners = np.fromiter(itertools.chain.from_iterable(loops), np.int32, loop_offsets[-1])
+        volume = np.array([cell["volume"] for cell in cells])
+        del cells, faces, loops
+    nbr_offsets = np.zeros(len(adjacent) + 1, np.int64)
+    neighbors = np.empty(len(loop_corners), np.int32)
+    area = np.empty(len(cell_seed))
+    flags = np.zeros(len(cell_seed), np.int8)
+    _voronoi_grains(
+        cell_seed,
+        face_offsets,
+        adjacent,
+        loop_offsets,
+        loop_corners,
+        band_points,
+        side,
+        low,
+        high,
+        volume,
+        nbr_offsets,
+        neighbors,
+        area,
+        flags,
+    )
+    seeds = band[cell_seed]
+    return {
+        "redo": bool((flags & (WALL | OUTSIDE)).any()),
+        "seed": seeds,
+        "face_offsets": face_offsets,
+        "pairs": np.stack([np.repeat(seeds, np.diff(face_offsets)), band[adjacent]]),
+        "nbr_offsets": nbr_offsets,
+        "neighbors": neighbors[: nbr_offsets[-1]],
+        "volume": volume,
+        "area": area,
+        "bad_corner": (flags & BAD_CORNER) != 0,
+        "flags": flags,
+    }
+
+
+def _slab_batches(
+    grains: dict, scale: float, source: str, chunk_size: int, report: VoronoiReport
+) -> Iterator[GrainBatch]:
+    """One slab's grains in id order, as batches; its corner counts and volume go to the
+    report."""
+    from grainclass._kernels.voronoi import GEOMETRY, OPEN
+    from grainclass.arrow import decimal_strings
+
+    if (grains["flags"] & (GEOMETRY | OPEN)).any():
+        raise GrainclassError("Voro++ returned cells whose faces do not close up; report this")
+    seeds = grains["seed"]
+    face_counts = np.diff(grains["face_offsets"])
+    nbr_counts = np.diff(grains["nbr_offsets"])
+    volume = grains["volume"] / scale**3
+    area = grains["area"] / scale**2
+    report.cells += len(seeds)
+    report.bad_corners += int(grains["bad_corner"].sum())
+    report.volume += float(volume.sum())
+    order = np.argsort(seeds, kind="stable")
+    face_starts = grains["face_offsets"][:-1]
+    nbr_starts = grains["nbr_offsets"][:-1]
+    for a in range(0, len(seeds), chunk_size):
+        cells = order[a : a + chunk_size]
+        faces = _gather(face_starts[cells], face_counts[cells])
+        yield GrainBatch(
+            source=source,
+            grain_id=decimal_strings(seeds[cells]),
+            location=seeds[cells],
+            location_kind="record",
+            face_offsets=np.concatenate([[0], np.cumsum(face_counts[cells])]),
+            nbr_offsets=np.concatenate([[0], np.cumsum(nbr_counts[faces])]),
+            neighbors=grains["neighbors"][_gather(nbr_starts[faces], nbr_counts[faces])],
+            volume=volume[cells],
+            area=area[cells],
+            boundary=np.zeros(len(cells), np.int8),  # periodic: no grain is cut
+        )
+
+
+def _gather(starts: np.ndarray, counts: np.ndarray) -> np.ndarray:
+    """The indices ``starts[i] .. starts[i] + counts[i] - 1``, one run after another."""
+    run_starts = np.concatenate([[0], np.cumsum(counts)])[:-1]
+    return np.repeat(starts - run_starts, counts) + np.arange(int(counts.sum()))

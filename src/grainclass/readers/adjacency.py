@@ -167,15 +167,19 @@ def adjacency_lines(batch: GrainBatch) -> Iterator[str]:
 
     Volumes and areas are written with every digit (``repr``) where the batch has them.
     """
-    for g in range(len(batch)):
-        faces = [
-            " ".join(map(str, batch.neighbors[batch.nbr_offsets[f] : batch.nbr_offsets[f + 1]]))
-            for f in range(batch.face_offsets[g], batch.face_offsets[g + 1])
-        ]
-        fields = [str(batch.grain_id[g]), ";".join(faces)]
-        for key, values in (("volume", batch.volume), ("area", batch.area)):
-            if values is not None and not np.isnan(values[g]):
-                fields.append(f"{key}={float(values[g])!r}")
-        if batch.boundary is not None and batch.boundary[g] >= 0:
-            fields.append(f"boundary={batch.boundary[g]}")
-        yield "\t".join(fields) + "\n"
+    from grainclass._kernels.columns import _faces_fields
+
+    offsets, data = _faces_fields(batch.face_offsets, batch.nbr_offsets, batch.neighbors)
+    text = data.tobytes().decode()
+    ids = batch.grain_id  # a list, or an Arrow array (to_pylist: one call, not one per row)
+    columns = [
+        [str(grain_id) for grain_id in getattr(batch.grain_id, "to_pylist", lambda: ids)()],
+        [text[a:b] for a, b in zip(offsets[:-1].tolist(), offsets[1:].tolist(), strict=True)],
+    ]
+    for key, values in (("volume", batch.volume), ("area", batch.area)):
+        if values is not None:
+            columns.append([f"\t{key}={v!r}" if v == v else "" for v in values.tolist()])
+    if batch.boundary is not None:
+        columns.append([f"\tboundary={b}" if b >= 0 else "" for b in batch.boundary.tolist()])
+    for fields in zip(*columns, strict=True):
+        yield f"{fields[0]}\t{fields[1]}{''.join(fields[2:])}\n"
