@@ -97,7 +97,6 @@ def _kernel_inputs(batch):
             batch.nbr_offsets,
             batch.neighbors,
             np.ones(g, bool),
-            np.ones(g, bool),
             int(n_faces.max()),
             code_offsets,
             np.zeros(int(code_offsets[-1]), np.int32),

@@ -104,66 +104,138 @@ class GrainCodes:
     triangles: np.ndarray
 
 
+@dataclass(frozen=True)
+class _Classified:
+    """The classification kernels' per-grain outputs (see ``_kernels/batch.py``)."""
+
+    status: np.ndarray
+    consistent: np.ndarray
+    err: np.ndarray
+    family: np.ndarray
+    fundamental: np.ndarray
+    n_trees: np.ndarray
+    depth: np.ndarray
+    belts: np.ndarray
+    tree_offsets: np.ndarray
+    tree_bytes: np.ndarray
+    tree_length: np.ndarray
+
+
+def _classify_csr(batch: GrainBatch, max_small: int, strings: bool) -> _Classified:
+    """The fast path over the batch, then the general path over the grains it left."""
+    from grainclass._kernels.batch import _classify_batch, _classify_general_batch
+
+    g = len(batch)
+    parsed = np.ones(g, np.bool_)
+    parsed[list(batch.parse_errors)] = False
+    tree_offsets = np.zeros(g + 1, np.int64)
+    if strings:
+        np.cumsum(3 * batch.n_faces, out=tree_offsets[1:])
+    out = _Classified(
+        status=np.zeros(g, np.int8),
+        consistent=np.zeros(g, np.bool_),
+        err=np.zeros((g, 3), np.int64),
+        family=np.full(g, -1, np.int8),
+        fundamental=np.zeros(g, np.int32),
+        n_trees=np.zeros(g, np.int32),
+        depth=np.zeros(g, np.int32),
+        belts=np.zeros((g, 3), np.int64),
+        tree_offsets=tree_offsets,
+        tree_bytes=np.empty(int(tree_offsets[-1]), np.uint8),
+        tree_length=np.zeros(g, np.int64),
+    )
+    csr = (batch.face_offsets, batch.nbr_offsets, batch.neighbors)
+    strings_out = (out.tree_offsets, out.tree_bytes, out.tree_length)
+    rows = (out.family, out.fundamental, out.n_trees, out.depth, out.belts)
+    run_ranges(
+        _classify_batch,
+        g,
+        *csr,
+        parsed,
+        max_small,
+        strings,
+        out.status,
+        out.consistent,
+        out.err,
+        *rows,
+        *strings_out,
+    )
+    pending = np.flatnonzero(out.status == codes.PENDING)
+    if len(pending):
+        run_ranges(
+            _classify_general_batch,
+            len(pending),
+            pending,
+            *csr,
+            strings,
+            out.status,
+            out.err,
+            *rows,
+            *strings_out,
+        )
+    return out
+
+
+def _pending_records(batch: PlanarCodeRecords, pending: np.ndarray) -> GrainBatch:
+    """The records the fast path left, as a CSR batch (the general path reads CSR)."""
+    import io
+
+    from grainclass.readers.planar_code import read_planar_code
+
+    header = b">>planar_code be<<" if batch.big_endian else b">>planar_code<<"
+    records = [batch.buf[batch.starts[r] : batch.starts[r + 1]].tobytes() for r in pending]
+    data = io.BytesIO(header + b"".join(records))
+    return next(iter(read_planar_code(data, batch.source, len(pending))))
+
+
 def grain_codes(batch: GrainBatch | PlanarCodeRecords) -> GrainCodes:
     """Classify a batch for counting only: no truncation-forest strings, no types.
 
     planar_code records are classified straight from their bytes (the census path).
     """
-    from grainclass._kernels.batch import _classify_batch, _classify_records
+    from grainclass._kernels.batch import _classify_records
     from grainclass._kernels.columns import _triangle_counts
 
+    if not isinstance(batch, PlanarCodeRecords):
+        out = _classify_csr(batch, MAX_BITSET_FACES, strings=False)
+        status, family, fundamental = out.status, out.family, out.fundamental
+        n_trees, split = out.n_trees, out.belts[:, 0]
+        triangles = _triangle_counts(batch.face_offsets, batch.nbr_offsets, status == codes.OK)
+        n_faces = batch.n_faces.copy()
+        n_faces[list(batch.parse_errors)] = -1
+        return _grain_codes(n_faces, status, family, fundamental, n_trees, split, triangles)
     g = len(batch)
+    n_faces = np.zeros(g, np.int64)
+    triangles = np.zeros(g, np.int32)
     status = np.zeros(g, np.int8)
     family = np.full(g, -1, np.int8)
     fundamental = np.zeros(g, np.int32)
     n_trees = np.zeros(g, np.int32)
     belts = np.zeros((g, 3), np.int64)
-    scratch = (np.zeros(g, np.bool_), np.zeros((g, 3), np.int64))  # consistent, err
-    depth = np.zeros(g, np.int32)
-    if isinstance(batch, PlanarCodeRecords):
-        n_faces = np.zeros(g, np.int64)
-        triangles = np.zeros(g, np.int32)
-        run_ranges(
-            _classify_records,
-            g,
-            batch.buf,
-            batch.starts,
-            batch.big_endian,
-            n_faces,
-            triangles,
-            status,
-            *scratch,
-            family,
-            fundamental,
-            n_trees,
-            depth,
-            belts,
-        )
-    else:
-        n_faces = batch.n_faces
-        parsed = np.ones(g, np.bool_)
-        parsed[list(batch.parse_errors)] = False
-        no_strings = np.zeros(g + 1, np.int64), np.zeros(0, np.uint8), np.zeros(g, np.int64)
-        run_ranges(
-            _classify_batch,
-            g,
-            batch.face_offsets,
-            batch.nbr_offsets,
-            batch.neighbors,
-            parsed,
-            MAX_BITSET_FACES,
-            False,
-            status,
-            *scratch,
-            family,
-            fundamental,
-            n_trees,
-            depth,
-            belts,
-            *no_strings,
-        )
-        triangles = _triangle_counts(batch.face_offsets, batch.nbr_offsets, status == codes.OK)
-        n_faces = np.where(parsed, n_faces, -1)
+    run_ranges(
+        _classify_records,
+        g,
+        batch.buf,
+        batch.starts,
+        batch.big_endian,
+        n_faces,
+        triangles,
+        status,
+        family,
+        fundamental,
+        n_trees,
+        belts,
+    )
+    codes_ = _grain_codes(n_faces, status, family, fundamental, n_trees, belts[:, 0], triangles)
+    pending = np.flatnonzero(status == codes.PENDING)
+    if len(pending):
+        general = grain_codes(_pending_records(batch, pending))
+        for name in GrainCodes.__dataclass_fields__:
+            getattr(codes_, name)[pending] = getattr(general, name)
+    return codes_
+
+
+def _grain_codes(n_faces, status, family, fundamental, n_trees, split, triangles) -> GrainCodes:
     ok = status == codes.OK
     truncations = np.where(ok, n_faces - fundamental, -1)
     is_flag = (family == codes.FLAG) & (truncations == 0)
@@ -173,7 +245,7 @@ def grain_codes(batch: GrainBatch | PlanarCodeRecords) -> GrainCodes:
         family=family,
         truncations=truncations,
         class_code=_class_codes(family, truncations, n_trees),
-        split_k=np.where(is_flag, belts[:, 0], -1),
+        split_k=np.where(is_flag, split, -1),
         triangles=triangles,
     )
 
@@ -209,47 +281,17 @@ def classify(
     >>> row["class"], row["split_k"], row["split_m"], row["penalty"]
     ('flag', 1, 1, 18)
     """
-    from grainclass._kernels.batch import _classify_batch
     from grainclass._kernels.columns import _code_strings, _compact, _p_vectors
-    from grainclass._kernels.weinberg import _weinberg_batch
+    from grainclass._kernels.weinberg import _rotations, _weinberg_batch
 
     g = len(batch)
     n_faces = batch.n_faces
     parsed = np.ones(g, np.bool_)
     parsed[list(batch.parse_errors)] = False
-    status = np.zeros(g, np.int8)
-    consistent = np.zeros(g, np.bool_)
-    err = np.zeros((g, 3), np.int64)
-    family = np.full(g, -1, np.int8)
-    fundamental = np.zeros(g, np.int32)
-    n_trees = np.zeros(g, np.int32)
-    depth = np.zeros(g, np.int32)
-    belts = np.zeros((g, 3), np.int64)
-    tree_offsets = np.zeros(g + 1, np.int64)
-    np.cumsum(3 * n_faces, out=tree_offsets[1:])
-    tree_bytes = np.empty(int(tree_offsets[-1]), np.uint8)
-    tree_length = np.zeros(g, np.int64)
-    run_ranges(
-        _classify_batch,
-        g,
-        batch.face_offsets,
-        batch.nbr_offsets,
-        batch.neighbors,
-        parsed,
-        max_bitset_faces,
-        True,
-        status,
-        consistent,
-        err,
-        family,
-        fundamental,
-        n_trees,
-        depth,
-        belts,
-        tree_offsets,
-        tree_bytes,
-        tree_length,
-    )
+    out = _classify_csr(batch, max_bitset_faces, strings=True)
+    status, consistent, err, family = out.status, out.consistent, out.err, out.family
+    fundamental, n_trees, depth, belts = out.fundamental, out.n_trees, out.depth, out.belts
+    tree_offsets, tree_bytes, tree_length = out.tree_offsets, out.tree_bytes, out.tree_length
 
     ok = status == codes.OK
     truncations = n_faces - fundamental
@@ -266,14 +308,19 @@ def classify(
     symmetry = np.zeros(g, np.int32)
     chirality = np.zeros(g, np.int8)
     if types:
+        rotations = batch.neighbors
+        unoriented = np.flatnonzero(ok & ~consistent)
+        if len(unoriented):
+            rotations = batch.neighbors.copy()
+            csr = (batch.face_offsets, batch.nbr_offsets, batch.neighbors)
+            run_ranges(_rotations, len(unoriented), unoriented, *csr, rotations)
         run_ranges(
             _weinberg_batch,
             g,
             batch.face_offsets,
             batch.nbr_offsets,
-            batch.neighbors,
+            rotations,
             ok,
-            consistent,
             int(n_faces.max()) if g else 0,
             code_offsets,
             weinberg,

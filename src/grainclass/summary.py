@@ -179,6 +179,23 @@ def tally_batch(batch: GrainBatch | PlanarCodeRecords, include_boundary: bool = 
     return Tally(counts, int(keep.sum()), boundary_excluded=int(len(batch) - keep.sum()))
 
 
+def _distinct(hashes: list[np.ndarray]) -> int | None:
+    """Distinct values among the hash arrays, which are emptied (they can hold a 64-bit hash
+    per grain of a whole enumeration: joined and sorted in place, never copied twice); None
+    when there are none (no types computed, or no grain ok)."""
+    joined = np.empty(sum(h.size for h in hashes), np.uint64)
+    if not joined.size:
+        return None
+    at = 0
+    hashes.reverse()
+    while hashes:
+        part = hashes.pop()
+        joined[at : at + part.size] = part
+        at += part.size
+    joined.sort()
+    return int(1 + np.count_nonzero(joined[1:] != joined[:-1]))
+
+
 def merge_tallies(tallies: list[pd.DataFrame]) -> pd.DataFrame:
     """One tally from several (same groups added up)."""
     if not tallies:
@@ -338,15 +355,15 @@ def summarize(
     [['6', 1, 1], ['total', 1, 1]]
     """
     items = [grains] if isinstance(grains, pa.Table) else grains
-    tallies = [
-        item if isinstance(item, Tally) else tally_table(item, include_boundary) for item in items
-    ]
-    counts = merge_tallies([t.counts for t in tallies])
-    hashes = [t.type_hashes for t in tallies]
-    # None when no grain carries a Weinberg vector (no types computed, or none ok).
-    distinct = np.unique(np.concatenate(hashes)).size if any(h.size for h in hashes) else None
-    headline = _headline(counts, distinct)
-    headline["boundary_excluded"] = sum(t.boundary_excluded for t in tallies)
+    frames, hashes, excluded = [], [], 0
+    for item in items:
+        part = item if isinstance(item, Tally) else tally_table(item, include_boundary)
+        frames.append(part.counts)
+        hashes.append(part.type_hashes)
+        excluded += part.boundary_excluded
+    counts = merge_tallies(frames)
+    headline = _headline(counts, _distinct(hashes))
+    headline["boundary_excluded"] = excluded
     return Summary(
         headline=headline,
         classes=class_counts(counts),

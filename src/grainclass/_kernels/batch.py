@@ -1,17 +1,19 @@
 """The batch kernels: one compiled call classifies every grain of a batch.
 
 Grains with at most 64 faces whose lists pass the fast check run on bitsets with per-call
-scratch (``small.py``); every other grain takes the general path, which allocates per grain but
-diagnoses anything (``validate.py``, ``reduce.py``, ``belts.py``). Two layouts come in: CSR
-arrays (:func:`_classify_batch`, any reader) and plantri's planar_code bytes
-(:func:`_classify_records`, parsed record by record into scratch, for the census).
+scratch (``small.py``); the fast kernels mark every other grain PENDING, for
+:func:`_classify_general_batch`, which allocates per grain but diagnoses anything
+(``validate.py``, ``reduce.py``, ``belts.py``). It is a kernel of its own so that it is compiled
+only when some input needs it (it is most of the compilation). Two layouts come in: CSR arrays
+(:func:`_classify_batch`, any reader) and plantri's planar_code bytes
+(:func:`_classify_records`, validated in place, for the census).
 """
 
 import numpy as np
 
 from grainclass._kernels.belts import _four_belts
 from grainclass._kernels.bits import MAX_BITSET_FACES, ONE, ZERO, lowest, popcount
-from grainclass._kernels.codes import E_PARSE, FLAG, INVALID, OK, SC, STACKED
+from grainclass._kernels.codes import E_PARSE, FLAG, INVALID, OK, PENDING, SC, STACKED
 from grainclass._kernels.planar_code import _entry
 from grainclass._kernels.reduce import _has_empty_triangle, _reduce
 from grainclass._kernels.small import (
@@ -37,7 +39,6 @@ def _work():
         np.empty(MAX_BITSET_FACES, np.int32),  # round it was removed in
         np.empty(MAX_BITSET_FACES, np.int32),  # its parent in the truncation forest
         _forest_scratch(MAX_BITSET_FACES),
-        np.zeros(6, np.int64),  # result of the general path
     )
 
 
@@ -99,7 +100,7 @@ def _classify_small(
     tree_length,
 ):
     """Classify grain g, validated by the fast path (its bitsets are in ``work``)."""
-    adj, _, link, removed_round, parent, scratch, _ = work
+    adj, _, link, removed_round, parent, scratch = work
     alive = _reduce_small(n, adj, removed_round, link)
     fundamental[g] = popcount(alive)
     if fundamental[g] == 4:
@@ -118,63 +119,6 @@ def _classify_small(
     else:
         family[g] = FLAG
         _four_belts_small(n, adj, belts[g])
-
-
-@njit(inline="always")
-def _classify_grain(
-    g,
-    n,
-    offsets,
-    o0,
-    neighbors,
-    max_small,
-    strings,
-    work,
-    status,
-    consistent,
-    err,
-    family,
-    fundamental,
-    trees_count,
-    depth,
-    belts,
-    tree_offsets,
-    tree_bytes,
-    tree_length,
-):
-    """Classify grain ``g``: n faces, face f's neighbours at
-    ``neighbors[offsets[o0 + f]:offsets[o0 + f + 1]]``; writes row g of every output."""
-    family[g] = -1
-    depth[g] = 0
-    at = tree_offsets[g] if strings else 0
-    if n <= max_small and _validate_small(n, offsets, neighbors, o0, work[0], work[1]):
-        status[g] = OK
-        consistent[g] = True
-        _classify_small(
-            g,
-            n,
-            strings,
-            work,
-            family,
-            fundamental,
-            trees_count,
-            depth,
-            belts,
-            at,
-            tree_bytes,
-            tree_length,
-        )
-        return
-    result = work[6]
-    off = offsets[o0 : o0 + n + 1] - offsets[o0]
-    nb = neighbors[offsets[o0] : offsets[o0 + n]]
-    result[:] = -1
-    _classify_general(n, off, nb, strings, err[g], tree_bytes, at, result, belts[g])
-    status[g] = result[0]
-    if result[0] == OK:
-        family[g], fundamental[g] = result[1], result[2]
-        if result[3] >= 0:
-            trees_count[g], depth[g], tree_length[g] = result[3], result[4], result[5]
 
 
 @njit
@@ -199,9 +143,9 @@ def _classify_batch(
     tree_bytes,
     tree_length,
 ):
-    """Classify grains ``first:last`` of a CSR batch; row ``g`` of every output is written for
-    grain ``g`` only, so disjoint ranges can run in threads at once (see
-    :mod:`grainclass.parallel`).
+    """Classify grains ``first:last`` of a CSR batch by the fast path, marking the others
+    PENDING; row ``g`` of every output is written for grain ``g`` only, so disjoint ranges can
+    run in threads at once (see :mod:`grainclass.parallel`).
 
     Layout: grain g has faces ``face_offsets[g]:face_offsets[g+1]``; face f has the local
     neighbour indices ``neighbors[nbr_offsets[f]:nbr_offsets[f+1]]``. ``err`` is int64[G, 3]
@@ -213,34 +157,71 @@ def _classify_batch(
     """
     work = _work()
     for g in range(first, last):
+        family[g] = -1
+        depth[g] = 0
         if not parsed[g]:
-            family[g] = -1
-            depth[g] = 0
             status[g] = INVALID
             err[g, 0] = E_PARSE
             continue
         f0 = face_offsets[g]
-        _classify_grain(
-            g,
-            face_offsets[g + 1] - f0,
-            nbr_offsets,
-            f0,
-            neighbors,
-            max_small,
-            strings,
-            work,
-            status,
-            consistent,
-            err,
-            family,
-            fundamental,
-            trees_count,
-            depth,
-            belts,
-            tree_offsets,
-            tree_bytes,
-            tree_length,
-        )
+        n = face_offsets[g + 1] - f0
+        if n <= max_small and _validate_small(n, nbr_offsets, neighbors, f0, work[0], work[1]):
+            status[g] = OK
+            consistent[g] = True
+            _classify_small(
+                g,
+                n,
+                strings,
+                work,
+                family,
+                fundamental,
+                trees_count,
+                depth,
+                belts,
+                tree_offsets[g] if strings else 0,
+                tree_bytes,
+                tree_length,
+            )
+        else:
+            status[g] = PENDING
+
+
+@njit
+def _classify_general_batch(
+    first,
+    last,
+    grains,
+    face_offsets,
+    nbr_offsets,
+    neighbors,
+    strings,
+    status,
+    err,
+    family,
+    fundamental,
+    trees_count,
+    depth,
+    belts,
+    tree_offsets,
+    tree_bytes,
+    tree_length,
+):
+    """The general path for grains ``grains[first:last]`` of a CSR batch (outputs as in
+    :func:`_classify_batch`)."""
+    result = np.empty(6, np.int64)
+    for i in range(first, last):
+        g = grains[i]
+        f0, n = face_offsets[g], face_offsets[g + 1] - face_offsets[g]
+        off = nbr_offsets[f0 : f0 + n + 1] - nbr_offsets[f0]
+        nb = neighbors[nbr_offsets[f0] : nbr_offsets[f0 + n]]
+        at = tree_offsets[g] if strings else 0
+        result[:] = -1
+        _classify_general(n, off, nb, strings, err[g], tree_bytes, at, result, belts[g])
+        status[g] = result[0]
+        if result[0] == OK:
+            family[g], fundamental[g] = result[1], result[2]
+            if result[3] >= 0:
+                trees_count[g], depth[g], tree_length[g] = result[3], result[4], result[5]
 
 
 @njit
@@ -253,51 +234,42 @@ def _classify_records(
     n_faces,
     triangles,
     status,
-    consistent,
-    err,
     family,
     fundamental,
     trees_count,
-    depth,
     belts,
 ):
-    """As :func:`_classify_batch` without strings, straight from planar_code records: record r
-    is ``buf[starts[r]:starts[r + 1]]`` (complete, as ``planar_code._scan`` found it).
+    """The fast path without strings, straight from planar_code records: record r is
+    ``buf[starts[r]:starts[r + 1]]`` (complete, as ``planar_code._scan`` found it).
     ``n_faces[r]`` gets its vertex count, ``triangles[r]`` its vertices of degree 3 (the
     grain's triangular faces) when it is ok.
 
     A triangulation in 1-byte entries with at most 64 vertices is validated in place
-    (:func:`small._validate_record`); any other record is parsed into scratch CSR arrays and
-    takes the same way as a CSR grain, with its exact diagnosis.
+    (:func:`small._validate_record`); any other record is left PENDING, for the general path
+    on CSR arrays.
     """
     work = _work()
-    adj = work[0]
-    offsets = np.empty(MAX_BITSET_FACES + 1, np.int64)
-    neighbors = np.empty(MAX_BITSET_FACES * MAX_BITSET_FACES, np.int32)
-    no_trees = np.zeros(1, np.int64)
+    no_trees = np.zeros(1, np.int32)
     no_bytes = np.zeros(0, np.uint8)
+    no_lengths = np.zeros(1, np.int64)
     for r in range(first, last):
         p = starts[r]
         wide = buf[p] == 0
-        width = 2 if wide else 1
         q = p + 1 if wide else p
         n = _entry(buf, q, wide, big_endian)
-        q += width
         n_faces[r] = n
         family[r] = -1
-        depth[r] = 0
         # 1 + n + (6n - 12) bytes: a triangulation's worth of entries.
         if (
             not wide
             and n <= MAX_BITSET_FACES
             and starts[r + 1] - p == 7 * n - 11
-            and _validate_record(buf, q, n, adj, work[1])
+            and _validate_record(buf, q + 1, n, work[0], work[1])
         ):
             status[r] = OK
-            consistent[r] = True
             cubic = 0
             for v in range(n):
-                cubic += popcount(adj[v]) == 3
+                cubic += popcount(work[0][v]) == 3
             triangles[r] = cubic
             _classify_small(
                 r,
@@ -307,49 +279,11 @@ def _classify_records(
                 family,
                 fundamental,
                 trees_count,
-                depth,
+                no_trees,
                 belts,
                 0,
                 no_bytes,
-                no_trees,
+                no_lengths,
             )
-            continue
-        if n + 1 > offsets.shape[0]:
-            offsets = np.empty(n + 1, np.int64)
-        if starts[r + 1] - p > neighbors.shape[0]:
-            neighbors = np.empty(starts[r + 1] - p, np.int32)
-        m = 0
-        offsets[0] = 0
-        cubic = 0
-        for f in range(n):
-            x = _entry(buf, q, wide, big_endian)
-            q += width
-            while x != 0:
-                neighbors[m] = x - 1
-                m += 1
-                x = _entry(buf, q, wide, big_endian)
-                q += width
-            offsets[f + 1] = m
-            cubic += offsets[f + 1] - offsets[f] == 3
-        _classify_grain(
-            r,
-            n,
-            offsets,
-            0,
-            neighbors,
-            MAX_BITSET_FACES,
-            False,
-            work,
-            status,
-            consistent,
-            err,
-            family,
-            fundamental,
-            trees_count,
-            depth,
-            belts,
-            no_trees,
-            no_bytes,
-            no_trees,
-        )
-        triangles[r] = cubic if status[r] == OK else 0
+        else:
+            status[r] = PENDING

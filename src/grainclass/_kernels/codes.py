@@ -3,7 +3,8 @@
 Kept as plain module-level ints so that numba folds them as constants.
 """
 
-# Grain status (the ``status`` column).
+# Grain status (the ``status`` column); PENDING only between the fast and the general path.
+PENDING = -1
 OK = 0
 DEGENERATE = 1
 NON_SIMPLE = 2

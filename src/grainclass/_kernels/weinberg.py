@@ -165,14 +165,29 @@ def _weinberg(corner_nbr, left_face, t, best, stamp, label, used, code):
 
 
 @njit
+def _rotations(first, last, grains, face_offsets, nbr_offsets, neighbors, rotations):
+    """Counter-clockwise rotation lists (``validate._rotation``) of the ok grains
+    ``grains[first:last]`` whose lists do not turn one way, written over their lists in
+    ``rotations`` (a copy of ``neighbors``). A kernel of its own: compiled only when an input
+    needs it."""
+    for i in range(first, last):
+        g = grains[i]
+        f0, n = face_offsets[g], face_offsets[g + 1] - face_offsets[g]
+        a = nbr_offsets[f0]
+        rot = np.empty(nbr_offsets[f0 + n] - a, np.int64)
+        _rotation(n, nbr_offsets[f0 : f0 + n + 1] - a, neighbors[a : nbr_offsets[f0 + n]], rot)
+        for k in range(rot.shape[0]):
+            rotations[a + k] = rot[k]
+
+
+@njit
 def _weinberg_batch(
     first,
     last,
     face_offsets,
     nbr_offsets,
-    neighbors,
+    rotations,
     ok,
-    consistent,
     max_faces,
     code_offsets,
     codes,
@@ -183,12 +198,12 @@ def _weinberg_batch(
     ``codes[code_offsets[g]:]`` (6n - 11 entries), with its symmetry (automorphisms, reflections
     included) and chirality. Rows of different ranges are disjoint: ranges can run in threads.
 
-    ``consistent[g]``: the lists already turn one way (no orientation to recover). Scratch
-    arrays for up to ``max_faces`` faces are allocated once per call.
+    ``rotations`` are the neighbour lists turning one way, counter-clockwise (as the fast path
+    found them, or from :func:`_rotations`). Scratch arrays for up to ``max_faces`` faces are
+    allocated once per call.
     """
     t_max = max(2 * max_faces - 4, 1)
     darts = max(6 * max_faces - 12, 1)
-    rot = np.empty(darts, np.int64)
     pos = np.empty((max_faces, max_faces), np.int64)
     corner = np.empty(darts, np.int64)
     corner_nbr = np.empty((t_max, 3), np.int64)
@@ -203,12 +218,7 @@ def _weinberg_batch(
         f0 = face_offsets[g]
         n = face_offsets[g + 1] - f0
         off = nbr_offsets[f0 : f0 + n + 1] - nbr_offsets[f0]
-        nb = neighbors[nbr_offsets[f0] : nbr_offsets[f0 + n]]
-        if consistent[g]:
-            for i in range(off[n]):
-                rot[i] = nb[i]
-        else:  # orientation or order to recover: rare, allocates
-            _rotation(n, off, nb, rot)
+        rot = rotations[nbr_offsets[f0] : nbr_offsets[f0 + n]]
         t = _corners(n, off, rot, pos, corner, corner_nbr, left_face)
         for c in range(t):
             stamp[c] = 0
