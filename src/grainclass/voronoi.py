@@ -34,7 +34,7 @@ import numpy as np
 from grainclass.batch import GrainBatch
 from grainclass.errors import GrainclassError
 
-SLAB_SEEDS = 50_000  # seeds per slab at most; below two slabs' worth, one call does it all
+SLAB_SEEDS = 35_000  # seeds per slab at most; below two slabs' worth, one call does it all
 MARGIN_SPACINGS = 3.0  # seeds around a slab, in mean seed spacings (a failed check doubles it)
 SAFETY = 1e-5  # pyvoro2 refuses seeds closer than this (in the scaled box)
 
