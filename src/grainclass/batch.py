@@ -128,6 +128,13 @@ def csr_from_lists(
     )
 
 
+def run_indices(starts: np.ndarray, counts: np.ndarray) -> np.ndarray:
+    """The indices ``starts[i] .. starts[i] + counts[i] - 1``, one run after another: picks
+    grains' faces, or faces' neighbours, out of CSR arrays."""
+    run_starts = np.concatenate([[0], np.cumsum(counts)])[:-1].astype(np.int64)
+    return np.repeat(starts - run_starts, counts) + np.arange(int(np.sum(counts)))
+
+
 def tri_state(flags: Sequence[bool | None]) -> np.ndarray:
     """True/False/None as the int8 1/0/-1 of :attr:`GrainBatch.boundary`."""
     return np.array([-1 if flag is None else int(flag) for flag in flags], np.int8)

@@ -31,7 +31,7 @@ from multiprocessing import get_context
 
 import numpy as np
 
-from grainclass.batch import GrainBatch
+from grainclass.batch import GrainBatch, run_indices
 from grainclass.errors import GrainclassError
 
 SLAB_SEEDS = 35_000  # seeds per slab at most; below two slabs' worth, one call does it all
@@ -220,7 +220,8 @@ def _slab(points: np.ndarray, side: float, k: int, slabs: int, margin: float) ->
     and the seeds within ``margin`` of the slab (periodic in z too), walls above and below."""
     from pyvoro2 import _core
 
-    from grainclass._kernels.voronoi import BAD_CORNER, OUTSIDE, WALL, _voronoi_grains
+    from grainclass._kernels.loops import BAD_CORNER
+    from grainclass._kernels.voronoi import OUTSIDE, WALL, _voronoi_grains
 
     z0, z1 = side * k / slabs, side * (k + 1) / slabs
     low, high = z0 - margin, z1 + margin
@@ -295,7 +296,8 @@ def _slab_batches(
 ) -> Iterator[GrainBatch]:
     """One slab's grains in id order, as batches; its corner counts and volume go to the
     report."""
-    from grainclass._kernels.voronoi import GEOMETRY, OPEN
+    from grainclass._kernels.loops import OPEN
+    from grainclass._kernels.voronoi import GEOMETRY
     from grainclass.arrow import decimal_strings
 
     if (grains["flags"] & (GEOMETRY | OPEN)).any():
@@ -313,7 +315,7 @@ def _slab_batches(
     nbr_starts = grains["nbr_offsets"][:-1]
     for a in range(0, len(seeds), chunk_size):
         cells = order[a : a + chunk_size]
-        faces = _gather(face_starts[cells], face_counts[cells])
+        faces = run_indices(face_starts[cells], face_counts[cells])
         yield GrainBatch(
             source=source,
             grain_id=decimal_strings(seeds[cells]),
@@ -321,14 +323,8 @@ def _slab_batches(
             location_kind="record",
             face_offsets=np.concatenate([[0], np.cumsum(face_counts[cells])]),
             nbr_offsets=np.concatenate([[0], np.cumsum(nbr_counts[faces])]),
-            neighbors=grains["neighbors"][_gather(nbr_starts[faces], nbr_counts[faces])],
+            neighbors=grains["neighbors"][run_indices(nbr_starts[faces], nbr_counts[faces])],
             volume=volume[cells],
             area=area[cells],
             boundary=np.zeros(len(cells), np.int8),  # periodic: no grain is cut
         )
-
-
-def _gather(starts: np.ndarray, counts: np.ndarray) -> np.ndarray:
-    """The indices ``starts[i] .. starts[i] + counts[i] - 1``, one run after another."""
-    run_starts = np.concatenate([[0], np.cumsum(counts)])[:-1]
-    return np.repeat(starts - run_starts, counts) + np.arange(int(counts.sum()))

@@ -7,11 +7,10 @@ the centre of the sphere through s and the three seeds behind the faces that mee
 
 import numpy as np
 
+from grainclass._kernels.loops import OPEN, _clear, _grain_adjacency, _tables
 from grainclass._numba import njit
 
-# Flags per cell.
-BAD_CORNER = 1  # a corner not on exactly three faces
-OPEN = 2  # an edge not on exactly two faces: the loops do not close into a surface
+# Flags per cell, besides loops.BAD_CORNER and loops.OPEN.
 WALL = 4  # a face on the container wall: the slab was too thin for this cell
 OUTSIDE = 8  # a corner's empty sphere reaches beyond the slab's seeds: the cell may be wrong
 GEOMETRY = 16  # the corners' volume disagrees with Voro++'s: the corner positions are wrong
@@ -68,28 +67,23 @@ def _voronoi_grains(
 ):
     """Grain c (the cell of seed ``cell_seed[c]``, a row of ``points``) has faces
     ``face_offsets[c]:face_offsets[c + 1]``; face f lies against seed ``adjacent[f]`` (negative:
-    a wall) and has the corners ``loop_corners[loop_offsets[f]:loop_offsets[f + 1]]``.
+    a wall) and has the corners ``loop_corners[loop_offsets[f]:loop_offsets[f + 1]]`` (numbered
+    from 0 in each cell, as Voro++ does).
 
-    Writes the faces' neighbour lists in cyclic order (local face indices, CSR in
-    ``nbr_offsets`` / ``neighbors``, sized like the loops), the surface area and the flags
-    above. Seeds from ``z_low`` to ``z_high`` are all present (a slab; x and y periodic with
-    period ``side``): a corner whose empty sphere leaves that range is flagged. ``volume`` is
-    Voro++'s, to check the corners against. Neighbour lists follow
-    :func:`grainclass.readers.loops.adjacency_from_loops`: consecutive edges to the same face
-    count once across a corner on two faces only.
+    Writes the faces' neighbour lists in cyclic order (``loops._grain_adjacency``: local face
+    indices, CSR in ``nbr_offsets`` / ``neighbors``, sized like the loops), the surface area and
+    the flags above. Seeds from ``z_low`` to ``z_high`` are all present (a slab; x and y
+    periodic with period ``side``): a corner whose empty sphere leaves that range is flagged.
+    ``volume`` is Voro++'s, to check the corners against.
     """
-    n_cells = cell_seed.shape[0]
     size = 64
-    first = np.full(size * size, -1, np.int32)
-    second = np.full(size * size, -1, np.int32)
-    on_faces = np.zeros(size, np.int32)
-    corner_faces = np.zeros((size, 3), np.int32)
+    tables = _tables(size)
     position = np.zeros((size, 3))
-    edge_nbrs = np.empty(256, np.int32)
     point = np.empty(3)
+    bad = np.empty(3, np.int64)
     m = 0
     nbr_offsets[0] = 0
-    for c in range(n_cells):
+    for c in range(cell_seed.shape[0]):
         s = cell_seed[c]
         f0, f1 = face_offsets[c], face_offsets[c + 1]
         corners = 0
@@ -97,54 +91,15 @@ def _voronoi_grains(
             corners = max(corners, loop_corners[i] + 1)
         if corners > size:
             size = corners
-            first = np.full(size * size, -1, np.int32)
-            second = np.full(size * size, -1, np.int32)
-            on_faces = np.zeros(size, np.int32)
-            corner_faces = np.zeros((size, 3), np.int32)
+            tables = _tables(size)
             position = np.zeros((size, 3))
-        flag = 0
+        m, flag = _grain_adjacency(
+            f0, f1, loop_offsets, loop_corners, size, tables, nbr_offsets, neighbors, m, bad
+        )
+        corner_faces, on_faces = tables[3], tables[4]
         for f in range(f0, f1):
             if adjacent[f] < 0:
                 flag |= WALL
-            a, b = loop_offsets[f], loop_offsets[f + 1]
-            for i in range(a, b):
-                u, v = loop_corners[i], loop_corners[i + 1 if i + 1 < b else a]
-                key = min(u, v) * size + max(u, v)
-                if first[key] < 0:
-                    first[key] = f - f0
-                elif second[key] < 0:
-                    second[key] = f - f0
-                else:
-                    flag |= OPEN
-                if on_faces[u] < 3:
-                    corner_faces[u, on_faces[u]] = f
-                on_faces[u] += 1
-        for u in range(corners):
-            if on_faces[u] != 3:
-                flag |= BAD_CORNER
-        # Neighbours in the loops' order; edges with no second face leave the cell open.
-        for f in range(f0, f1):
-            a, b = loop_offsets[f], loop_offsets[f + 1]
-            if b - a > edge_nbrs.shape[0]:
-                edge_nbrs = np.empty(b - a, np.int32)
-            for i in range(a, b):
-                u, v = loop_corners[i], loop_corners[i + 1 if i + 1 < b else a]
-                key = min(u, v) * size + max(u, v)
-                other = second[key] if first[key] == f - f0 else first[key]
-                if other < 0 or other == f - f0:
-                    flag |= OPEN
-                edge_nbrs[i - a] = other
-            kept = 0
-            for i in range(a, b):
-                previous = edge_nbrs[(i - a - 1) % (b - a)]
-                if edge_nbrs[i - a] != previous or on_faces[loop_corners[i]] > 2:
-                    neighbors[m] = edge_nbrs[i - a]
-                    m += 1
-                    kept += 1
-            if kept == 0:
-                neighbors[m] = edge_nbrs[0]
-                m += 1
-            nbr_offsets[f + 1] = m
         # Corners from the seeds behind their faces; then area, volume and the slab check.
         if flag & (WALL | OPEN) == 0:
             for u in range(corners):
@@ -182,10 +137,4 @@ def _voronoi_grains(
         else:
             area[c] = np.nan
         flags[c] = flag
-        for f in range(f0, f1):  # reset the tables for the next cell
-            a, b = loop_offsets[f], loop_offsets[f + 1]
-            for i in range(a, b):
-                u, v = loop_corners[i], loop_corners[i + 1 if i + 1 < b else a]
-                first[min(u, v) * size + max(u, v)] = -1
-                second[min(u, v) * size + max(u, v)] = -1
-                on_faces[u] = 0
+        _clear(f0, f1, loop_offsets, loop_corners, size, tables)

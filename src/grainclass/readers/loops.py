@@ -11,62 +11,14 @@ start a new neighbour.
 
 from __future__ import annotations
 
-from collections import defaultdict
+import itertools
 from collections.abc import Iterable, Iterator, Sequence
 
 import numpy as np
 
-from grainclass.batch import GrainBatch, csr_from_lists, tri_state
+from grainclass.batch import GrainBatch, run_indices, tri_state
 
 FLOAT_KEYS = ("volume", "area")
-
-
-class LoopError(ValueError):
-    """Loops that do not close into a surface: the grain becomes an invalid row."""
-
-
-def adjacency_from_loops(loops: Sequence[Sequence[int]]) -> list[list[int]]:
-    """Face adjacency lists, in cyclic order, from the corner loops of a grain's faces.
-
-    Raises
-    ------
-    LoopError
-        When an edge does not lie on exactly two faces (an open or pinched surface).
-
-    Examples
-    --------
-    >>> square_pyramid = [[0, 3, 2, 1], [0, 1, 4], [1, 2, 4], [2, 3, 4], [3, 0, 4]]
-    >>> adjacency_from_loops(square_pyramid)[0]
-    [4, 3, 2, 1]
-    """
-    on_edge: dict[tuple[int, int], list[int]] = defaultdict(list)
-    faces_at: dict[int, set[int]] = defaultdict(set)
-    for f, loop in enumerate(loops):
-        for u, v in zip(loop, [*loop[1:], loop[0]], strict=True):
-            on_edge[(min(u, v), max(u, v))].append(f)
-            faces_at[u].add(f)
-    lists = []
-    for f, loop in enumerate(loops):
-        neighbours: list[int] = []
-        corners: list[int] = []
-        for u, v in zip(loop, [*loop[1:], loop[0]], strict=True):
-            faces = on_edge[(min(u, v), max(u, v))]
-            if len(faces) != 2 or faces[0] == faces[1]:
-                raise LoopError(f"not a closed surface: edge {u}-{v} lies on {len(faces)} face(s)")
-            neighbours.append(faces[1] if faces[0] == f else faces[0])
-            corners.append(u)
-        lists.append(_merge_runs(neighbours, corners, faces_at))
-    return lists
-
-
-def _merge_runs(neighbours: list[int], corners: list[int], faces_at) -> list[int]:
-    """Join consecutive edges to the same face across corners that only those two faces share."""
-    keep = [
-        i
-        for i in range(len(neighbours))
-        if neighbours[i] != neighbours[i - 1] or len(faces_at[corners[i]]) > 2
-    ]
-    return [neighbours[i] for i in keep] if keep else neighbours[:1]
 
 
 def batch_from_loops(
@@ -76,24 +28,63 @@ def batch_from_loops(
     boundary: Sequence[bool | None] | None = None,
 ) -> GrainBatch:
     """A batch from (id, location, loops or None, volume, area, error) tuples; ``boundary``
-    flags grains cut by the sample boundary (None where the input does not tell)."""
-    ids, locations, lists, volumes, areas, errors = [], [], [], [], [], {}
+    flags grains cut by the sample boundary (None where the input does not tell).
+
+    The face adjacency is built by a compiled kernel (``_kernels/loops.py``); a grain whose
+    loops do not close into a surface (an edge not on exactly two faces) becomes an invalid
+    row that names the edge.
+
+    Examples
+    --------
+    >>> square_pyramid = [[0, 3, 2, 1], [0, 1, 4], [1, 2, 4], [2, 3, 4], [3, 0, 4]]
+    >>> batch = batch_from_loops([("p", 1, square_pyramid, 1.0, 1.0, None)], "<memory>")
+    >>> batch.neighbors[: batch.nbr_offsets[1]].tolist()  # face 0's neighbours
+    [4, 3, 2, 1]
+    """
+    from grainclass._kernels.loops import OPEN, _adjacency_from_loops
+
+    ids, locations, volumes, areas, errors = [], [], [], [], {}
+    face_counts, loop_lengths, corners = [], [], []
     for k, (grain_id, location, loops, volume, area, error) in enumerate(grains):
         ids.append(grain_id)
         locations.append(location)
         volumes.append(volume)
         areas.append(area)
-        faces: list[list[int]] = []
-        if error is None and loops is not None:
-            try:
-                faces = adjacency_from_loops(loops)
-            except LoopError as exc:
-                error = str(exc)
         if error is not None:
             errors[k] = error
-            faces = []
-        lists.append(faces)
-    face_offsets, nbr_offsets, neighbors = csr_from_lists(lists)
+        if error is None and loops is not None:
+            face_counts.append(len(loops))
+            loop_lengths.extend(len(loop) for loop in loops)
+            corners.extend(itertools.chain.from_iterable(loops))
+        else:
+            face_counts.append(0)
+    face_offsets = _offsets(face_counts)
+    loop_offsets = _offsets(loop_lengths)
+    nbr_offsets = np.zeros(len(loop_lengths) + 1, np.int64)
+    neighbors = np.empty(len(corners), np.int32)
+    flags = np.zeros(len(ids), np.int8)
+    bad = np.zeros((len(ids), 3), np.int64)
+    _adjacency_from_loops(
+        face_offsets,
+        loop_offsets,
+        np.asarray(corners, np.int64),
+        nbr_offsets,
+        neighbors,
+        flags,
+        bad,
+    )
+    neighbors = neighbors[: nbr_offsets[-1]]
+    open_surface = (flags & OPEN) != 0
+    if open_surface.any():  # such grains keep their row, without faces
+        for g in np.flatnonzero(open_surface):
+            u, v, count = bad[g]
+            errors[int(g)] = f"not a closed surface: edge {u}-{v} lies on {count} face(s)"
+        counts = np.asarray(face_counts, np.int64)
+        kept_faces = np.flatnonzero(np.repeat(~open_surface, counts))
+        nbr_counts = np.diff(nbr_offsets)[kept_faces]
+        neighbors = neighbors[run_indices(nbr_offsets[:-1][kept_faces], nbr_counts)]
+        face_offsets = _offsets(np.where(open_surface, 0, counts))
+        nbr_offsets = _offsets(nbr_counts)
     return GrainBatch(
         source=source,
         grain_id=ids,
@@ -107,6 +98,13 @@ def batch_from_loops(
         area=np.asarray(areas, np.float64),
         boundary=None if boundary is None else tri_state(boundary),
     )
+
+
+def _offsets(counts: Sequence[int] | np.ndarray) -> np.ndarray:
+    """CSR offsets (int64, leading 0) from counts."""
+    offsets = np.zeros(len(counts) + 1, np.int64)
+    np.cumsum(counts, out=offsets[1:])
+    return offsets
 
 
 def read_loops(lines: Iterable[bytes], source: str, chunk_size: int) -> Iterator[GrainBatch]:
