@@ -37,6 +37,14 @@ class _Chunk:
 
     def add(self, line_no: int, line: str) -> None:
         fields = line.split("\t")
+        if len(fields) == 2 and not self.attributes:  # the common line: id and faces only
+            self.grain_id.append(fields[0].strip() or f"line{line_no}")
+            self.location.append(line_no)
+            self.faces.append(fields[1].encode())
+            self.floats["volume"].append(np.nan)
+            self.floats["area"].append(np.nan)
+            self.boundary.append(-1)
+            return
         grain_id = fields[0].strip() if len(fields) > 1 else (line.split() or [""])[0]
         values: dict[str, str] = {}
         try:
