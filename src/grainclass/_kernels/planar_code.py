@@ -40,13 +40,20 @@ def _scan(buf, big_endian, max_records, starts):
         q += width
         seen = 0
         nbrs = 0
-        while seen < n and q + width <= size:
-            x = _entry(buf, q, wide, big_endian)
-            q += width
-            if x == 0:
-                seen += 1
-            else:
-                nbrs += 1
+        if wide:
+            while seen < n and q + width <= size:
+                x = _entry(buf, q, wide, big_endian)
+                q += width
+                if x == 0:
+                    seen += 1
+                else:
+                    nbrs += 1
+        else:  # plantri's usual records: count the 0 bytes, no branch per entry
+            start = q
+            while seen < n and q < size:
+                seen += buf[q] == 0
+                q += 1
+            nbrs = q - start - seen
         if seen < n:
             break
         records += 1
