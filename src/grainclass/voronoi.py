@@ -196,7 +196,8 @@ def _tessellate_slabs(points: np.ndarray, side: float, slabs: int, margin: float
     where a corner's empty sphere left the seeds present is done again with twice the margin."""
     from grainclass.parallel import get_jobs
 
-    with ProcessPoolExecutor(min(get_jobs(), slabs), mp_context=get_context("spawn")) as pool:
+    pool = ProcessPoolExecutor(min(get_jobs(), slabs), mp_context=get_context("spawn"))
+    try:
         futures: list[Future | None] = [
             pool.submit(_slab, points, side, k, slabs, margin) for k in range(slabs)
         ]
@@ -214,6 +215,9 @@ def _tessellate_slabs(points: np.ndarray, side: float, slabs: int, margin: float
                     )
                 result = pool.submit(_slab, points, side, k, slabs, wider).result()
             yield result
+    finally:
+        # A reader that stops early (a closed pipe, an error) does not wait for the other slabs.
+        pool.shutdown(wait=True, cancel_futures=True)
 
 
 def _slab(points: np.ndarray, side: float, k: int, slabs: int, margin: float) -> dict:
