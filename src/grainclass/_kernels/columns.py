@@ -78,26 +78,6 @@ def _strings_from_codes(codes, names, name_offsets):
 
 
 @njit
-def _decimal_strings(values):
-    """Arrow string buffers for the decimal digits of non-negative integers."""
-    n = values.shape[0]
-    offsets = np.zeros(n + 1, np.int32)
-    for g in range(n):
-        digits, v = 1, values[g]
-        while v >= 10:
-            v //= 10
-            digits += 1
-        offsets[g + 1] = offsets[g] + digits
-    data = np.empty(offsets[n], np.uint8)
-    for g in range(n):
-        v = values[g]
-        for i in range(offsets[g + 1] - 1, offsets[g] - 1, -1):
-            data[i] = 48 + v % 10
-            v //= 10
-    return offsets, data
-
-
-@njit
 def _digits(v):
     """Decimal digits of a non-negative integer."""
     digits = 1
@@ -105,6 +85,29 @@ def _digits(v):
         v //= 10
         digits += 1
     return digits
+
+
+@njit
+def _write_digits(data, p, v):
+    """Write the non-negative integer v in decimal at ``data[p:]``; returns the end."""
+    end = p + _digits(v)
+    for k in range(end - 1, p - 1, -1):
+        data[k] = 48 + v % 10
+        v //= 10
+    return end
+
+
+@njit
+def _decimal_strings(values):
+    """Arrow string buffers for the decimal digits of non-negative integers."""
+    n = values.shape[0]
+    offsets = np.zeros(n + 1, np.int32)
+    for g in range(n):
+        offsets[g + 1] = offsets[g] + _digits(values[g])
+    data = np.empty(offsets[n], np.uint8)
+    for g in range(n):
+        _write_digits(data, offsets[g], values[g])
+    return offsets, data
 
 
 @njit
@@ -131,12 +134,7 @@ def _faces_fields(face_offsets, nbr_offsets, neighbors):
                 if i > nbr_offsets[f]:
                     data[p] = 32  # " "
                     p += 1
-                v = neighbors[i]
-                digits = _digits(v)
-                for k in range(digits - 1, -1, -1):
-                    data[p + k] = 48 + v % 10
-                    v //= 10
-                p += digits
+                p = _write_digits(data, p, neighbors[i])
     return offsets, data
 
 
@@ -159,12 +157,7 @@ def _code_strings(codes, code_offsets, ok):
         p = offsets[g]
         for i in range(code_offsets[g], code_offsets[g + 1]):
             data[p] = 40 if i == code_offsets[g] else 44  # "(" or ","
-            v = codes[i]
-            digits = _digits(v)
-            for k in range(digits, 0, -1):
-                data[p + k] = 48 + v % 10
-                v //= 10
-            p += digits + 1
+            p = _write_digits(data, p + 1, codes[i])
         data[p] = 41  # ")"
     return offsets, data
 
