@@ -122,16 +122,23 @@ def csr_from_lists(
     n_faces = [len(faces) for faces in grains]
     degrees = [len(nbrs) for faces in grains for nbrs in faces]
     return (
-        np.concatenate([[0], np.cumsum(n_faces, dtype=np.int64)]),
-        np.concatenate([[0], np.cumsum(degrees, dtype=np.int64)]),
+        offsets_from_counts(n_faces),
+        offsets_from_counts(degrees),
         np.asarray([x for faces in grains for nbrs in faces for x in nbrs], np.int32),
     )
+
+
+def offsets_from_counts(counts: Sequence[int] | np.ndarray) -> np.ndarray:
+    """CSR offsets (int64, a leading 0 and the running totals) from per-item counts."""
+    offsets = np.zeros(len(counts) + 1, np.int64)
+    np.cumsum(counts, out=offsets[1:])
+    return offsets
 
 
 def run_indices(starts: np.ndarray, counts: np.ndarray) -> np.ndarray:
     """The indices ``starts[i] .. starts[i] + counts[i] - 1``, one run after another: picks
     grains' faces, or faces' neighbours, out of CSR arrays."""
-    run_starts = np.concatenate([[0], np.cumsum(counts)])[:-1].astype(np.int64)
+    run_starts = offsets_from_counts(counts)[:-1]
     return np.repeat(starts - run_starts, counts) + np.arange(int(np.sum(counts)))
 
 

@@ -32,7 +32,7 @@ from multiprocessing import get_context
 
 import numpy as np
 
-from grainclass.batch import GrainBatch, run_indices
+from grainclass.batch import GrainBatch, offsets_from_counts, run_indices
 from grainclass.errors import GrainclassError
 
 SLAB_SEEDS = 35_000  # seeds per slab at most; below two slabs' worth, one call does it all
@@ -253,11 +253,9 @@ def _slab(points: np.ndarray, side: float, k: int, slabs: int, margin: float) ->
         faces = [face for cell in cells for face in cell["faces"]]
         loops = [face["vertices"] for face in faces]
         cell_seed = np.array([cell["id"] for cell in cells], np.int64)
-        face_offsets = np.zeros(len(cells) + 1, np.int64)
-        np.cumsum([len(cell["faces"]) for cell in cells], out=face_offsets[1:])
+        face_offsets = offsets_from_counts([len(cell["faces"]) for cell in cells])
         adjacent = np.array([face["adjacent_cell"] for face in faces], np.int64)
-        loop_offsets = np.zeros(len(faces) + 1, np.int64)
-        np.cumsum([len(loop) for loop in loops], out=loop_offsets[1:])
+        loop_offsets = offsets_from_counts([len(loop) for loop in loops])
         loop_corners = np.fromiter(itertools.chain.from_iterable(loops), np.int32, loop_offsets[-1])
         volume = np.array([cell["volume"] for cell in cells])
         del cells, faces, loops
@@ -326,8 +324,8 @@ def _slab_batches(
             grain_id=decimal_strings(seeds[cells]),
             location=seeds[cells],
             location_kind="record",
-            face_offsets=np.concatenate([[0], np.cumsum(face_counts[cells])]),
-            nbr_offsets=np.concatenate([[0], np.cumsum(nbr_counts[faces])]),
+            face_offsets=offsets_from_counts(face_counts[cells]),
+            nbr_offsets=offsets_from_counts(nbr_counts[faces]),
             neighbors=grains["neighbors"][run_indices(nbr_starts[faces], nbr_counts[faces])],
             volume=volume[cells],
             area=area[cells],

@@ -16,7 +16,7 @@ from collections.abc import Iterable, Iterator, Sequence
 
 import numpy as np
 
-from grainclass.batch import GrainBatch, run_indices, tri_state
+from grainclass.batch import GrainBatch, offsets_from_counts, run_indices, tri_state
 
 FLOAT_KEYS = ("volume", "area")
 
@@ -58,8 +58,8 @@ def batch_from_loops(
             corners.extend(itertools.chain.from_iterable(loops))
         else:
             face_counts.append(0)
-    face_offsets = _offsets(face_counts)
-    loop_offsets = _offsets(loop_lengths)
+    face_offsets = offsets_from_counts(face_counts)
+    loop_offsets = offsets_from_counts(loop_lengths)
     nbr_offsets = np.zeros(len(loop_lengths) + 1, np.int64)
     neighbors = np.empty(len(corners), np.int32)
     flags = np.zeros(len(ids), np.int8)
@@ -83,8 +83,8 @@ def batch_from_loops(
         kept_faces = np.flatnonzero(np.repeat(~open_surface, counts))
         nbr_counts = np.diff(nbr_offsets)[kept_faces]
         neighbors = neighbors[run_indices(nbr_offsets[:-1][kept_faces], nbr_counts)]
-        face_offsets = _offsets(np.where(open_surface, 0, counts))
-        nbr_offsets = _offsets(nbr_counts)
+        face_offsets = offsets_from_counts(np.where(open_surface, 0, counts))
+        nbr_offsets = offsets_from_counts(nbr_counts)
     return GrainBatch(
         source=source,
         grain_id=ids,
@@ -98,13 +98,6 @@ def batch_from_loops(
         area=np.asarray(areas, np.float64),
         boundary=None if boundary is None else tri_state(boundary),
     )
-
-
-def _offsets(counts: Sequence[int] | np.ndarray) -> np.ndarray:
-    """CSR offsets (int64, leading 0) from counts."""
-    offsets = np.zeros(len(counts) + 1, np.int64)
-    np.cumsum(counts, out=offsets[1:])
-    return offsets
 
 
 def read_loops(lines: Iterable[bytes], source: str, chunk_size: int) -> Iterator[GrainBatch]:
