@@ -91,12 +91,13 @@ def poisson_voronoi(
     slabs = -(-n_seeds // slab_seeds)
     margin = MARGIN_SPACINGS * side / n_seeds ** (1 / 3)
     source = f"voronoi:{n_seeds}:{seed}"
+    scaled = points * scale  # a power of two: exact
     if slabs < 2 or side / slabs + 2 * margin >= side:
-        yield from _whole(points * scale, side, scale, source, chunk_size, report)
+        yield from _whole(scaled, side, scale, source, chunk_size, report)
         return
-    _check_spacing(points * scale, side)
+    _check_spacing(scaled, side)
     pairs = []  # (seed, neighbour) of every face, for the check that faces are mutual
-    for grains in _tessellate_slabs(points * scale, side, slabs, margin):
+    for grains in _tessellate_slabs(scaled, side, slabs, margin):
         pairs.append(grains["pairs"])
         yield from _slab_batches(grains, scale, source, chunk_size, report)
     owner, adjacent = np.concatenate(pairs, axis=1)
