@@ -106,8 +106,10 @@ class GrainCodes:
 
 @dataclass(frozen=True)
 class _Classified:
-    """The classification kernels' per-grain outputs (see ``_kernels/batch.py``)."""
+    """The classification kernels' per-grain outputs (see ``_kernels/batch.py``), and which
+    grains the reader could parse."""
 
+    parsed: np.ndarray
     status: np.ndarray
     consistent: np.ndarray
     err: np.ndarray
@@ -132,6 +134,7 @@ def _classify_csr(batch: GrainBatch, max_small: int, strings: bool) -> _Classifi
     if strings:
         np.cumsum(3 * batch.n_faces, out=tree_offsets[1:])
     out = _Classified(
+        parsed=parsed,
         status=np.zeros(g, np.int8),
         consistent=np.zeros(g, np.bool_),
         err=np.zeros((g, 3), np.int64),
@@ -201,8 +204,7 @@ def grain_codes(batch: GrainBatch | PlanarCodeRecords) -> GrainCodes:
         status, family, fundamental = out.status, out.family, out.fundamental
         n_trees, split = out.n_trees, out.belts[:, 0]
         triangles = _triangle_counts(batch.face_offsets, batch.nbr_offsets, status == codes.OK)
-        n_faces = batch.n_faces.copy()
-        n_faces[list(batch.parse_errors)] = -1
+        n_faces = np.where(out.parsed, batch.n_faces, -1)
         return _grain_codes(n_faces, status, family, fundamental, n_trees, split, triangles)
     g = len(batch)
     n_faces = np.zeros(g, np.int64)
@@ -286,9 +288,8 @@ def classify(
 
     g = len(batch)
     n_faces = batch.n_faces
-    parsed = np.ones(g, np.bool_)
-    parsed[list(batch.parse_errors)] = False
     out = _classify_csr(batch, max_bitset_faces, strings=True)
+    parsed = out.parsed
     status, consistent, err, family = out.status, out.consistent, out.err, out.family
     fundamental, n_trees, depth, belts = out.fundamental, out.n_trees, out.depth, out.belts
     tree_offsets, tree_bytes, tree_length = out.tree_offsets, out.tree_bytes, out.tree_length
