@@ -1,0 +1,538 @@
+"""The census: every triangulation of the sphere with n vertices, classified in parts on Dask.
+
+plantri enumerates the triangulations with n vertices; its ``res/mod`` arguments split one
+enumeration into disjoint parts. Each part is one Dask task that streams plantri's output
+through the counting path of ``summarize`` (planar_code bytes, no per-grain rows) into a
+partial tally. A finished part is written to ``DIR/parts`` at once (whole or not at all), so a
+rerun skips it: an interrupted census resumes, and a lost worker costs only the part it held,
+which Dask runs again elsewhere. plantri's own counts are the cross-checks: all
+triangulations (``-u``), the 4-connected ones (``-c4``, the census's flag class) and those of
+minimum degree 4 (``-m4``: flag plus sc, the fundamental ones).
+"""
+
+from __future__ import annotations
+
+import json
+import logging
+import math
+import os
+import re
+import subprocess
+import sys
+import time
+from collections.abc import Callable, Iterable, Iterator, Sequence
+from contextlib import contextmanager
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+from grainclass.errors import GrainclassError
+
+if TYPE_CHECKING:
+    import pandas as pd
+    from distributed import Client
+
+    from grainclass.summary import Summary
+
+CHECKS = {"all": ("-u",), "flag": ("-u", "-c4"), "min_degree_4": ("-u", "-m4")}
+_COUNT_LINE = re.compile(rb"(\d+) triangulations (?:written|generated)")
+TABLES = ("classes", "round", "split")
+
+
+class CensusError(GrainclassError):
+    """A part or a plantri count that could not be obtained."""
+
+
+@dataclass(frozen=True, order=True)
+class Part:
+    """Part ``index`` of ``parts`` of the triangulations with ``n`` vertices."""
+
+    n: int
+    index: int
+    parts: int
+
+    @property
+    def name(self) -> str:
+        return f"n{self.n:02d}-part{self.index:04d}of{self.parts:04d}"
+
+    def plantri_args(self) -> list[str]:
+        """plantri's arguments: no header, n, and ``res/mod`` when there is more than one part."""
+        return ["-h", str(self.n)] + ([f"{self.index}/{self.parts}"] if self.parts > 1 else [])
+
+
+@dataclass(frozen=True)
+class PartResult:
+    """A part's tally (``summary.tally`` groups and sums) and what plantri said of it."""
+
+    part: Part
+    counts: pd.DataFrame
+    grains: int
+    plantri_count: int
+    seconds: float
+
+
+def plantri_command(plantri: str | None) -> str:
+    """The plantri to run: ``plantri`` if given, else the one ``find_plantri`` finds."""
+    from grainclass.plantri import find_plantri
+
+    return plantri or find_plantri()
+
+
+def _reported_count(stderr: bytes, command: list[str]) -> int:
+    found = _COUNT_LINE.search(stderr)
+    if not found:
+        message = stderr.decode(errors="replace").strip()
+        raise CensusError(f"{' '.join(command)}: no count in plantri's report: {message!r}")
+    return int(found.group(1))
+
+
+def count_part(part: Part, chunk_size: int, plantri: str | None = None) -> PartResult:
+    """Enumerate one part with plantri and tally it (runs on a Dask worker).
+
+    Raises
+    ------
+    CensusError
+        When plantri fails, or reports another number of triangulations than were read.
+    """
+    from grainclass.parallel import set_jobs
+    from grainclass.readers.planar_code import read_planar_code
+    from grainclass.summary import merge_tallies, tally_batch
+
+    set_jobs(1)  # parallel over parts: one thread per worker process
+    command = [plantri_command(plantri), *part.plantri_args()]
+    start = time.perf_counter()
+    frames: list[pd.DataFrame] = []
+    grains = 0
+    with subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE) as process:
+        for records in read_planar_code(
+            process.stdout, f"plantri {part.name}", chunk_size, raw=True
+        ):
+            tallied = tally_batch(records)
+            grains += len(tallied)
+            frames.append(tallied.counts)
+            if len(frames) >= 64:  # keep a long part's tallies small
+                frames = [merge_tallies(frames)]
+        stderr = process.stderr.read()
+    if process.returncode:
+        message = stderr.decode(errors="replace").strip()
+        raise CensusError(f"{' '.join(command)} failed (exit {process.returncode}): {message}")
+    reported = _reported_count(stderr, command)
+    if reported != grains:
+        raise CensusError(
+            f"{' '.join(command)}: plantri reported {reported} triangulations, {grains} were read"
+        )
+    return PartResult(part, merge_tallies(frames), grains, reported, time.perf_counter() - start)
+
+
+def plantri_count(n: int, check: str, plantri: str | None = None) -> int:
+    """plantri's own count of the triangulations with ``n`` vertices of a :data:`CHECKS` kind."""
+    flags = CHECKS[check]
+    if check != "all" and n < 6:
+        # plantri takes -c4 and -m4 only from n = 6; there are none below: a vertex degree sum
+        # of 6n - 12 >= 4n needs n >= 6.
+        return 0
+    command = [plantri_command(plantri), *flags, str(n)]
+    done = subprocess.run(command, capture_output=True, check=False)
+    if done.returncode:
+        message = done.stderr.decode(errors="replace").strip()
+        raise CensusError(f"{' '.join(command)} failed (exit {done.returncode}): {message}")
+    return _reported_count(done.stderr, command)
+
+
+def plantri_version(plantri: str | None = None) -> str:
+    """plantri's version line, e.g. ``5.8 - March 4, 2026`` (from its usage message)."""
+    done = subprocess.run(
+        [plantri_command(plantri), "-help"], capture_output=True, check=False, text=True
+    )
+    found = re.search(r"[Pp]lantri version (.+)", done.stdout + done.stderr)
+    return found.group(1).strip() if found else "unknown"
+
+
+@dataclass
+class Checkpoints:
+    """Finished parts and plantri counts kept in a census directory."""
+
+    directory: Path
+
+    def __post_init__(self) -> None:
+        for sub in ("parts", "checks"):
+            (self.directory / sub).mkdir(parents=True, exist_ok=True)
+
+    def part_path(self, part: Part) -> Path:
+        return self.directory / "parts" / f"{part.name}.parquet"
+
+    def check_path(self, n: int, check: str) -> Path:
+        return self.directory / "checks" / f"n{n:02d}-{check}.json"
+
+    def save_part(self, result: PartResult) -> None:
+        import pyarrow as pa
+        import pyarrow.parquet as pq
+
+        from grainclass.atomic import atomic_output
+
+        table = pa.Table.from_pandas(result.counts, preserve_index=False)
+        about = {
+            "n": result.part.n,
+            "index": result.part.index,
+            "parts": result.part.parts,
+            "grains": result.grains,
+            "plantri_count": result.plantri_count,
+            "seconds": result.seconds,
+        }
+        metadata = {**(table.schema.metadata or {}), b"grainclass.census": json.dumps(about)}
+        with atomic_output(str(self.part_path(result.part))) as sink:
+            pq.write_table(table.replace_schema_metadata(metadata), sink)
+
+    def load_part(self, part: Part) -> PartResult | None:
+        """The part's result if it finished in an earlier run, else None."""
+        import pyarrow.parquet as pq
+
+        path = self.part_path(part)
+        if not path.exists():
+            return None
+        table = pq.read_table(path)
+        about = json.loads(table.schema.metadata[b"grainclass.census"])
+        counts = table.replace_schema_metadata(None).to_pandas()
+        return PartResult(part, counts, about["grains"], about["plantri_count"], about["seconds"])
+
+    def save_check(self, n: int, check: str, count: int) -> None:
+        from grainclass.atomic import atomic_output
+
+        record = {"n": n, "check": check, "plantri": list(CHECKS[check]), "count": count}
+        with atomic_output(str(self.check_path(n, check))) as sink:
+            sink.write(json.dumps(record).encode())
+
+    def load_check(self, n: int, check: str) -> int | None:
+        path = self.check_path(n, check)
+        return json.loads(path.read_text())["count"] if path.exists() else None
+
+
+@dataclass(frozen=True)
+class CrossCheck:
+    """One comparison of the census with plantri's own count."""
+
+    n: int
+    what: str
+    census: int
+    plantri: int
+
+    @property
+    def ok(self) -> bool:
+        return self.census == self.plantri
+
+
+@dataclass
+class CensusResult:
+    """What :func:`run_census` computed: the tables, the cross-checks, and what failed."""
+
+    summary: Summary | None
+    counts: pd.DataFrame | None
+    checks: list[CrossCheck]
+    failures: list[str]
+    parts: list[PartResult]
+    computed: int
+    skipped: int
+    seconds: float
+    provenance: dict = field(default_factory=dict)
+
+    @property
+    def ok(self) -> bool:
+        return not self.failures and all(check.ok for check in self.checks)
+
+
+@dataclass
+class CensusProgress:
+    """Parts done, triangulations per second and time left, handed to a report callback."""
+
+    done: int
+    total: int
+    grains: int
+    rate: float
+    seconds_left: float | None
+
+
+def _part_weight(part: Part) -> float:
+    # For the time left: a part of n vertices is about 7.5**n / parts of work (the number of
+    # triangulations grows by 7.4 to 7.6 per vertex for n = 14..18).
+    return 7.5 ** (part.n - 16) / part.parts
+
+
+def census_parts(ns: Iterable[int], parts: int) -> list[Part]:
+    """Every part of every n, largest n first (the longest tasks start first)."""
+    return [Part(n, index, parts) for n in sorted(set(ns), reverse=True) for index in range(parts)]
+
+
+def run_census(
+    ns: Sequence[int],
+    parts: int,
+    directory: str | os.PathLike,
+    client: Client,
+    chunk_size: int = 50_000,
+    plantri: str | None = None,
+    report: Callable[[CensusProgress], None] | None = None,
+) -> CensusResult:
+    """Classify every triangulation with n vertices for each n in ``ns``, ``parts`` Dask tasks per
+    n, on ``client``; finished parts in ``directory`` are reused. Writes the tables (Parquet and
+    CSV), the summed tally and ``provenance.json`` there when every part and count is in.
+
+    Parameters
+    ----------
+    ns : sequence of int
+        Numbers of vertices (faces of the grains), each at least 4.
+    parts : int
+        plantri ``res/mod`` parts per n.
+    directory : path
+        Census directory: ``parts/`` and ``checks/`` hold the checkpoints.
+    client : distributed.Client
+        Where the tasks run (a local cluster, or one reached by its scheduler's address).
+    chunk_size : int
+        Triangulations per batch inside a task.
+    plantri : str, optional
+        The plantri binary as the workers see it (default: found on each worker).
+    report : callable, optional
+        Called with a :class:`CensusProgress` after each finished part.
+    """
+    from distributed import as_completed
+
+    start = time.perf_counter()
+    store = Checkpoints(Path(directory))
+    all_parts = census_parts(ns, parts)
+    results: dict[Part, PartResult] = {}
+    for part in all_parts:
+        found = store.load_part(part)
+        if found is not None:
+            results[part] = found
+    skipped = len(results)
+    counts: dict[tuple[int, str], int] = {}
+    for n in set(ns):
+        for check in CHECKS:
+            found_count = store.load_check(n, check)
+            if found_count is not None:
+                counts[n, check] = found_count
+
+    futures = {}
+    for part in all_parts:
+        if part not in results:
+            future = client.submit(
+                count_part,
+                part,
+                chunk_size,
+                plantri,
+                key=f"census-{part.name}",
+                pure=False,
+                priority=part.n,
+            )
+            futures[future] = part
+    for n in sorted(set(ns), reverse=True):
+        for check in CHECKS:
+            if (n, check) not in counts:
+                future = client.submit(
+                    plantri_count,
+                    n,
+                    check,
+                    plantri,
+                    key=f"census-n{n:02d}-{check}",
+                    pure=False,
+                    priority=n - 1,
+                )
+                futures[future] = (n, check)
+
+    failures: list[str] = []
+    total_weight = sum(_part_weight(p) for p in all_parts)
+    done_weight = sum(_part_weight(p) for p in results)
+    run_weight, run_grains, computed = 0.0, 0, 0
+    for future in as_completed(list(futures)):
+        what = futures.pop(future)
+        try:
+            value = future.result()
+        except Exception as exc:  # a failed part is reported; the others go on
+            failures.append(f"{_task_name(what)}: {exc}")
+            continue
+        finally:
+            future.release()
+        if isinstance(what, Part):
+            store.save_part(value)
+            results[what] = value
+            computed += 1
+            run_grains += value.grains
+            run_weight += _part_weight(what)
+            done_weight += _part_weight(what)
+            if report is not None:
+                elapsed = max(time.perf_counter() - start, 1e-9)
+                report(
+                    CensusProgress(
+                        done=len(results),
+                        total=len(all_parts),
+                        grains=run_grains,
+                        rate=run_grains / elapsed,
+                        seconds_left=(total_weight - done_weight) * elapsed / run_weight,
+                    )
+                )
+        else:
+            store.save_check(*what, value)
+            counts[what] = value
+
+    result = CensusResult(
+        summary=None,
+        counts=None,
+        checks=[],
+        failures=failures,
+        parts=[results[p] for p in sorted(results)],
+        computed=computed,
+        skipped=skipped,
+        seconds=time.perf_counter() - start,
+    )
+    if failures:
+        return result
+    _finish(result, ns, parts, counts, store, plantri, client)
+    return result
+
+
+def _task_name(what: Part | tuple[int, str]) -> str:
+    if isinstance(what, Part):
+        return f"part {what.name} (plantri {' '.join(what.plantri_args())})"
+    n, check = what
+    return f"plantri {' '.join(CHECKS[check])} {n}"
+
+
+def cross_checks(
+    counts: pd.DataFrame, plantri_counts: dict[tuple[int, str], int]
+) -> list[CrossCheck]:
+    """The census against plantri, for every n: ok grains against all triangulations, the flag
+    class against the 4-connected ones, flag plus sc against those of minimum degree 4."""
+    from grainclass import schema
+    from grainclass.summary import COUNT
+
+    ok = counts[counts[schema.STATUS] == "ok"]
+    checks = []
+    for n in sorted({n for n, _ in plantri_counts}):
+        of_n = ok[ok[schema.N_FACES] == n]
+        by_class = of_n.groupby(schema.CLASS)[COUNT].sum()
+        flag, sc = int(by_class.get("flag", 0)), int(by_class.get("sc", 0))
+        checks += [
+            CrossCheck(
+                n, "ok grains = plantri -u", int(of_n[COUNT].sum()), plantri_counts[n, "all"]
+            ),
+            CrossCheck(n, "flag = plantri -u -c4", flag, plantri_counts[n, "flag"]),
+            CrossCheck(
+                n, "flag + sc = plantri -u -m4", flag + sc, plantri_counts[n, "min_degree_4"]
+            ),
+        ]
+    return checks
+
+
+def _finish(
+    result: CensusResult,
+    ns: Sequence[int],
+    parts: int,
+    plantri_counts: dict[tuple[int, str], int],
+    store: Checkpoints,
+    plantri: str | None,
+    client: Client,
+) -> None:
+    """Sum the parts, check against plantri, write the tables and the provenance."""
+    from grainclass import __version__
+    from grainclass.summary import Tally, merge_tallies, summarize
+
+    counts = merge_tallies([r.counts for r in result.parts])
+    result.counts = counts
+    result.summary = summarize(
+        [Tally(counts, sum(r.grains for r in result.parts))], n_values=tuple(sorted(set(ns)))
+    )
+    result.checks = cross_checks(counts, plantri_counts)
+    result.provenance = {
+        "grainclass": __version__,
+        "plantri": client.submit(plantri_version, plantri, pure=False).result(),
+        "n": sorted(set(ns)),
+        "parts": parts,
+        "plantri_counts": {
+            f"n{n:02d}-{check}": count for (n, check), count in sorted(plantri_counts.items())
+        },
+        "cross_checks_passed": all(check.ok for check in result.checks),
+        "part_seconds": {r.part.name: round(r.seconds, 3) for r in result.parts},
+        "part_grains": {r.part.name: r.grains for r in result.parts},
+        "written": time.strftime("%Y-%m-%dT%H:%M:%S%z"),
+    }
+    write_tables(store.directory, result)
+
+
+def write_tables(directory: Path, result: CensusResult) -> None:
+    """The census tables as Parquet and CSV, the summed tally, and ``provenance.json``."""
+    import pyarrow as pa
+    import pyarrow.parquet as pq
+
+    from grainclass import schema
+    from grainclass.atomic import atomic_output
+    from grainclass.summary import Q_COUNT, Q_SQUARES, Q_SUM
+
+    frames = {name: result.summary.table(name) for name in TABLES}
+    # The summed tally, without the isoperimetric sums (triangulations have no geometry).
+    frames["counts"] = result.counts.drop(columns=[Q_COUNT, Q_SUM, Q_SQUARES]).astype(
+        {schema.N_FACES: "Int64", schema.ROUND_K: "Int64", schema.SPLIT_K: "Int64"}
+    )
+    for name, frame in frames.items():
+        with atomic_output(str(directory / f"{name}.parquet")) as sink:
+            pq.write_table(pa.Table.from_pandas(frame, preserve_index=False), sink)
+        with atomic_output(str(directory / f"{name}.csv")) as sink:
+            sink.write(frame.to_csv(index=False).encode())
+    with atomic_output(str(directory / "provenance.json")) as sink:
+        sink.write((json.dumps(result.provenance, indent=2) + "\n").encode())
+
+
+@contextmanager
+def dask_client(scheduler: str | None = None, workers: int | None = None) -> Iterator[Client]:
+    """A Dask client: of the cluster whose scheduler is at ``scheduler``, else of a new local
+    cluster of ``workers`` processes (default: one per core), one thread each, closed on the way
+    out."""
+    from distributed import Client, LocalCluster
+
+    if scheduler:
+        with Client(scheduler) as client:
+            yield client
+        return
+    with (
+        LocalCluster(
+            n_workers=workers or os.cpu_count() or 1,
+            threads_per_worker=1,
+            processes=True,
+            # No dashboard (bokeh is not a dependency); the scheduler's small HTTP server
+            # listens on a free local port, so that several clusters can run at once.
+            dashboard_address="127.0.0.1:0",
+            silence_logs=logging.ERROR,  # a worker restarted after a loss is not news here
+        ) as cluster,
+        Client(cluster) as client,
+    ):
+        yield client
+
+
+def format_seconds(seconds: float | None) -> str:
+    """``1:02:03``-style time for progress lines; ``?`` when unknown."""
+    if seconds is None or not math.isfinite(seconds):
+        return "?"
+    seconds = round(seconds)
+    return f"{seconds // 3600}:{seconds // 60 % 60:02d}:{seconds % 60:02d}"
+
+
+def progress_line(progress: CensusProgress) -> str:
+    return (
+        f"census: {progress.done}/{progress.total} parts, "
+        f"{progress.rate:,.0f} triangulations/s, about {format_seconds(progress.seconds_left)} left"
+    )
+
+
+class ProgressPrinter:
+    """Progress on standard error: redrawn in place on a terminal; elsewhere (a log file) a line
+    at most every ``every`` seconds, and the last one."""
+
+    def __init__(self, every: float = 10.0) -> None:
+        self.every = every
+        self._printed = -math.inf
+
+    def __call__(self, progress: CensusProgress) -> None:
+        last = progress.done == progress.total
+        if sys.stderr.isatty():
+            sys.stderr.write("\r" + progress_line(progress) + "\033[K" + ("\n" if last else ""))
+        elif last or time.monotonic() - self._printed >= self.every:
+            sys.stderr.write(progress_line(progress) + "\n")
+            self._printed = time.monotonic()
+        sys.stderr.flush()
