@@ -37,6 +37,7 @@ if TYPE_CHECKING:
 CHECKS = {"all": ("-u",), "flag": ("-u", "-c4"), "min_degree_4": ("-u", "-m4")}
 _COUNT_LINE = re.compile(rb"(\d+) triangulations (?:written|generated)")
 TABLES = ("classes", "round", "split")
+PROGRESS_TOPIC = "grainclass-census-progress"
 
 
 class CensusError(GrainclassError):
@@ -103,6 +104,7 @@ def count_part(part: Part, chunk_size: int, plantri: str | None = None) -> PartR
     start = time.perf_counter()
     frames: list[pd.DataFrame] = []
     grains = 0
+    publish, published = _progress_publisher(), time.monotonic()
     with subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE) as process:
         for records in read_planar_code(
             process.stdout, f"plantri {part.name}", chunk_size, raw=True
@@ -112,6 +114,9 @@ def count_part(part: Part, chunk_size: int, plantri: str | None = None) -> PartR
             frames.append(tallied.counts)
             if len(frames) >= 64:  # keep a long part's tallies small
                 frames = [merge_tallies(frames)]
+            if publish is not None and time.monotonic() - published >= 1.0:
+                publish({"part": part.name, "grains": grains})
+                published = time.monotonic()
         stderr = process.stderr.read()
     if process.returncode:
         message = stderr.decode(errors="replace").strip()
@@ -122,6 +127,17 @@ def count_part(part: Part, chunk_size: int, plantri: str | None = None) -> PartR
             f"{' '.join(command)}: plantri reported {reported} triangulations, {grains} were read"
         )
     return PartResult(part, merge_tallies(frames), grains, reported, time.perf_counter() - start)
+
+
+def _progress_publisher() -> Callable[[dict], None] | None:
+    """On a Dask worker, a function that sends a progress event to the client; else None."""
+    try:
+        from distributed import get_worker
+
+        worker = get_worker()
+    except (ImportError, ValueError):
+        return None
+    return lambda message: worker.log_event(PROGRESS_TOPIC, message)
 
 
 def plantri_count(n: int, check: str, plantri: str | None = None) -> int:
@@ -251,10 +267,60 @@ class CensusProgress:
     seconds_left: float | None
 
 
-def _part_weight(part: Part) -> float:
-    # For the time left: a part of n vertices is about 7.5**n / parts of work (the number of
-    # triangulations grows by 7.4 to 7.6 per vertex for n = 14..18).
-    return 7.5 ** (part.n - 16) / part.parts
+class _Tracker:
+    """What the progress line needs: triangulations read by finished parts and, from the
+    workers' events, by running ones; and an estimate of how many the census will read."""
+
+    def __init__(
+        self,
+        ns: list[int],
+        parts: int,
+        results: dict[Part, PartResult],
+        plantri_counts: dict[tuple[int, str], int],
+        start: float,
+    ) -> None:
+        self.ns, self.parts, self.start = ns, parts, start
+        self.results, self.plantri_counts = results, plantri_counts  # updated by run_census
+        self.skipped_grains = sum(r.grains for r in results.values())
+        self.reading: dict[str, int] = {}
+
+    def running(self, event: tuple[float, dict]) -> None:
+        """A worker's event: a running part's triangulations read so far."""
+        message = event[1]
+        self.reading[message["part"]] = message["grains"]
+
+    def finished(self, part: Part, result: PartResult) -> None:
+        self.reading.pop(part.name, None)
+
+    def expected(self) -> float | None:
+        """Triangulations in the whole census: plantri's count where known, else the mean part
+        so far times the parts, else extrapolated from another n at 7.5 per vertex (their
+        ratio for n = 14..18)."""
+        per_n: dict[int, float] = {}
+        for n in self.ns:
+            sizes = [r.grains for p, r in self.results.items() if p.n == n]
+            if (n, "all") in self.plantri_counts:
+                per_n[n] = self.plantri_counts[n, "all"]
+            elif sizes:
+                per_n[n] = sum(sizes) / len(sizes) * self.parts
+        if not per_n:
+            return None
+        for n in self.ns:
+            if n not in per_n:
+                known = min(per_n, key=lambda m: abs(m - n))
+                per_n[n] = per_n[known] * 7.5 ** (n - known)
+        return sum(per_n.values())
+
+    def progress(self, total_parts: int) -> CensusProgress:
+        elapsed = max(time.perf_counter() - self.start, 1e-9)
+        done = sum(r.grains for r in self.results.values())
+        this_run = done - self.skipped_grains + sum(self.reading.values())
+        rate = this_run / elapsed
+        expected = self.expected()
+        left = None
+        if expected is not None and rate > 0:
+            left = max(expected - done - sum(self.reading.values()), 0.0) / rate
+        return CensusProgress(len(self.results), total_parts, this_run, rate, left)
 
 
 def census_parts(ns: Iterable[int], parts: int) -> list[Part]:
@@ -292,7 +358,7 @@ def run_census(
     report : callable, optional
         Called with a :class:`CensusProgress` after each finished part.
     """
-    from distributed import as_completed
+    from distributed import wait
 
     start = time.perf_counter()
     store = Checkpoints(Path(directory))
@@ -338,39 +404,35 @@ def run_census(
                 futures[future] = (n, check)
 
     failures: list[str] = []
-    total_weight = sum(_part_weight(p) for p in all_parts)
-    done_weight = sum(_part_weight(p) for p in results)
-    run_weight, run_grains, computed = 0.0, 0, 0
-    for future in as_completed(list(futures)):
-        what = futures.pop(future)
+    computed = 0
+    tracker = _Tracker(sorted(set(ns)), parts, results, counts, start)
+    client.subscribe_topic(PROGRESS_TOPIC, tracker.running)
+    pending = set(futures)
+    while pending:
         try:
-            value = future.result()
-        except Exception as exc:  # a failed part is reported; the others go on
-            failures.append(f"{_task_name(what)}: {exc}")
-            continue
-        finally:
-            future.release()
-        if isinstance(what, Part):
-            store.save_part(value)
-            results[what] = value
-            computed += 1
-            run_grains += value.grains
-            run_weight += _part_weight(what)
-            done_weight += _part_weight(what)
-            if report is not None:
-                elapsed = max(time.perf_counter() - start, 1e-9)
-                report(
-                    CensusProgress(
-                        done=len(results),
-                        total=len(all_parts),
-                        grains=run_grains,
-                        rate=run_grains / elapsed,
-                        seconds_left=(total_weight - done_weight) * elapsed / run_weight,
-                    )
-                )
-        else:
-            store.save_check(*what, value)
-            counts[what] = value
+            done, pending = wait(pending, timeout=2.0, return_when="FIRST_COMPLETED")
+        except TimeoutError:  # nothing finished: report the running parts' progress
+            done = set()
+        for future in done:
+            what = futures.pop(future)
+            try:
+                value = future.result()
+            except Exception as exc:  # a failed part is reported; the others go on
+                failures.append(f"{_task_name(what)}: {exc}")
+                continue
+            finally:
+                future.release()
+            if isinstance(what, Part):
+                store.save_part(value)
+                results[what] = value
+                tracker.finished(what, value)
+                computed += 1
+            else:
+                store.save_check(*what, value)
+                counts[what] = value
+        if report is not None:
+            report(tracker.progress(len(all_parts)))
+    client.unsubscribe_topic(PROGRESS_TOPIC)
 
     result = CensusResult(
         summary=None,
@@ -515,21 +577,25 @@ def format_seconds(seconds: float | None) -> str:
 
 def progress_line(progress: CensusProgress) -> str:
     return (
-        f"census: {progress.done}/{progress.total} parts, "
-        f"{progress.rate:,.0f} triangulations/s, about {format_seconds(progress.seconds_left)} left"
+        f"census: {progress.done}/{progress.total} parts, {progress.grains:,} triangulations "
+        f"({progress.rate:,.0f}/s), about {format_seconds(progress.seconds_left)} left"
     )
 
 
 class ProgressPrinter:
     """Progress on standard error: redrawn in place on a terminal; elsewhere (a log file) a line
-    at most every ``every`` seconds, and the last one."""
+    at most every ``every`` seconds, and one when the last part is in."""
 
     def __init__(self, every: float = 10.0) -> None:
         self.every = every
         self._printed = -math.inf
+        self._ended = False
 
     def __call__(self, progress: CensusProgress) -> None:
         last = progress.done == progress.total
+        if self._ended:
+            return
+        self._ended = last
         if sys.stderr.isatty():
             sys.stderr.write("\r" + progress_line(progress) + "\033[K" + ("\n" if last else ""))
         elif last or time.monotonic() - self._printed >= self.every:
