@@ -4,7 +4,7 @@ VENV ?= .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed-stamp
 
-.PHONY: all install demo test test-nojit lint bench reproduce-enumeration reproduce-voronoi reproduce-census clean
+.PHONY: all install demo test test-nojit lint bench reproduce-enumeration reproduce-voronoi reproduce-census bench-census clean
 
 all: lint test
 
@@ -35,6 +35,10 @@ lint: install
 # Speed and memory, measured in one run (plantri n = 14, 15, 16; a few minutes).
 bench: install
 	$(BIN)/python benchmarks/bench.py
+
+# The census (n = 16 and 17, several minutes) against plantri alone on the same parts.
+bench-census: install
+	$(BIN)/python benchmarks/bench.py --census-only --census-sizes 16 17
 
 # The paper's Table II, split-type table and all* round rows for n = 13 and 14 (a few minutes).
 reproduce-enumeration: install

@@ -3,7 +3,8 @@
 Reports (a) plantri alone against plantri piped through ``grainclass classify`` and through
 ``grainclass summarize``, with ratios; (b) kernel-only grains per second; (c) 268,402 grains of
 adjacency text end to end; (d) peak resident memory of every run; (e) the first run after
-installation (numba compiling) against a warm run, and ``grainclass --help``.
+installation (numba compiling) against a warm run, and ``grainclass --help``; (f) the Voronoi
+generator; (g) ``grainclass census`` against plantri alone on the same parts.
 Benchmarks report; they assert nothing (the tests do that).
 """
 
@@ -39,22 +40,26 @@ def timed(command: str, env: dict | None = None) -> tuple[float, float]:
     return seconds, peak_kb / 1024
 
 
-def timed_tree(command: str) -> tuple[float, float]:
-    """Wall seconds and the peak of the summed resident MB of a command and all its
-    descendants (worker processes included), sampled every 0.1 s."""
+def timed_tree(command: str) -> tuple[float, float, float]:
+    """Wall seconds, the peak of the summed resident MB of a command and all its descendants
+    (worker processes included), and the peak of its largest single descendant, sampled every
+    0.1 s."""
     start = time.perf_counter()
     process = subprocess.Popen(command, shell=True, stderr=subprocess.DEVNULL)
-    peak = 0
+    peak = largest = 0
     while process.poll() is None:
-        peak = max(peak, _tree_rss_kb(process.pid))
+        rss = _tree_rss_kb(process.pid)
+        peak = max(peak, sum(rss.values()))
+        largest = max([largest, *(kb for pid, kb in rss.items() if pid != process.pid)])
         time.sleep(0.1)
     seconds = time.perf_counter() - start
     if process.returncode:
         raise subprocess.CalledProcessError(process.returncode, command)
-    return seconds, peak / 1024
+    return seconds, peak / 1024, largest / 1024
 
 
-def _tree_rss_kb(root: int) -> int:
+def _tree_rss_kb(root: int) -> dict[int, int]:
+    """Resident kB of ``root`` and each of its descendants, by pid."""
     parents: dict[int, int] = {}
     rss: dict[int, int] = {}
     for entry in Path("/proc").iterdir():
@@ -74,7 +79,7 @@ def _tree_rss_kb(root: int) -> int:
         children = [pid for pid, parent in parents.items() if parent in frontier]
         frontier = [pid for pid in children if pid not in tree]
         tree.update(frontier)
-    return sum(rss.get(pid, 0) for pid in tree)
+    return {pid: rss.get(pid, 0) for pid in tree}
 
 
 def _quote(text: str) -> str:
@@ -254,7 +259,7 @@ def bench_voronoi(work: Path, n: int = 268_402) -> None:
     text = work / "pv.txt"
     # Compile the slab kernels before timing (two slabs' worth of seeds).
     subprocess.run(f"{gc} voronoi 40000 -o {text} -q", shell=True, check=True)
-    seconds, mem = timed_tree(f"{gc} voronoi {n} --seed 1 -o {text} -q")
+    seconds, mem, _ = timed_tree(f"{gc} voronoi {n} --seed 1 -o {text} -q")
     points = np.random.default_rng(1).random((n, 3)) * 1024
     domain = pyvoro2.OrthorhombicCell(((0.0, 1024.0),) * 3, periodic=(True, True, True))
     start = time.perf_counter()
@@ -285,19 +290,48 @@ def bench_voronoi(work: Path, n: int = 268_402) -> None:
         print("    (voro++ not installed: apt-get install voro++ to compare)")
 
 
+def bench_census(sizes: list[int], parts: int, work: Path) -> None:
+    """``grainclass census`` on a local cluster (one worker per core) against plantri alone on
+    the same parts, as many at a time as there are cores."""
+    plantri = find_plantri()
+    cores = os.cpu_count() or 1
+    gc = " ".join(GRAINCLASS)
+    subprocess.run(f"{gc} census 9 --parts 2 -o {work / 'census-warm'} -q", shell=True, check=True)
+    print(f"(g) census, {parts} parts per n, {cores} workers, against plantri on the same parts:")
+    for n in sizes:
+        indices = " ".join(str(i) for i in range(parts))
+        alone, _ = timed(
+            f"printf '%s\\n' {indices} | xargs -P {cores} -I@ {plantri} -h {n} @/{parts} "
+            "> /dev/null 2>&1"
+        )
+        whole, _ = timed(f"{plantri} -h {n} > /dev/null 2>&1")
+        command = f"{gc} census {n} --parts {parts} -o {work / f'census-{n}'} -q > /dev/null"
+        seconds, total, worker = timed_tree(command)
+        print(
+            f"    n={n}: plantri alone, the same parts {alone:7.1f} s (one plantri {n}: "
+            f"{whole:.1f} s); census {seconds:7.1f} s  x{seconds / alone:4.2f}  "
+            f"largest process {worker:.0f} MB, all processes {total:.0f} MB"
+        )
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--sizes", type=int, nargs="+", default=[14, 15, 16])
     parser.add_argument("--kernel-sizes", type=int, nargs="+", default=[14, 16])
+    parser.add_argument("--census-sizes", type=int, nargs="+", default=[16])
+    parser.add_argument("--census-parts", type=int, default=4)
+    parser.add_argument("--census-only", action="store_true", help="only (g), the census")
     args = parser.parse_args()
     print(f"grainclass benchmarks on {os.cpu_count()} cores, {time.strftime('%Y-%m-%d %H:%M')}")
     with tempfile.TemporaryDirectory() as tmp:
         work = Path(tmp)
-        bench_startup(work)
-        bench_pipelines(args.sizes, work)
-        bench_kernel(args.kernel_sizes, work)
-        bench_adjacency(work)
-        bench_voronoi(work)
+        if not args.census_only:
+            bench_startup(work)
+            bench_pipelines(args.sizes, work)
+            bench_kernel(args.kernel_sizes, work)
+            bench_adjacency(work)
+            bench_voronoi(work)
+        bench_census(args.census_sizes, args.census_parts, work)
 
 
 if __name__ == "__main__":

@@ -73,6 +73,13 @@ def main() -> int:
         ]
     print("\nflag triangulations by split type k:m, extended\n")
     print(_markdown(labels))
+    rounds = pd.read_csv(out / "round.csv")
+    rounds = rounds[rounds["grains"].str.startswith("n=")]
+    rounds.insert(0, "n", rounds.pop("grains").str[2:])
+    for column in rounds.columns[2:]:
+        rounds[column] = rounds[column].map(lambda x: f"{x:.2f}")
+    print("\npercent in round<=k and in sc, all triangulations with n vertices, extended\n")
+    print(_markdown(rounds[rounds["n"].astype(int) >= 10]))
     return 0 if same else 1
 
 

@@ -17,7 +17,16 @@ from pathlib import Path
 import pandas as pd
 import pytest
 
-from grainclass.census import CHECKS, Part, dask_client, run_census
+from grainclass.census import (
+    CHECKS,
+    CensusProgress,
+    Part,
+    PartResult,
+    ProgressPrinter,
+    ProgressTracker,
+    dask_client,
+    run_census,
+)
 from grainclass.pipeline import tallies
 from grainclass.summary import summarize
 from test_enumeration import CLASS_COLUMNS, SPLIT, TABLE_II
@@ -245,3 +254,38 @@ def test_vertex_ranges_and_bad_arguments(tmp_path):
     assert done.returncode == 0, done.stderr
     written = pd.read_csv(tmp_path / "c" / "classes.csv", dtype={"n": str})
     assert list(written["n"]) == ["4", "5", "6", "9", "total"]
+
+
+def _result(n: int, index: int, parts: int, grains: int) -> PartResult:
+    return PartResult(Part(n, index, parts), pd.DataFrame(), grains, grains, 1.0)
+
+
+def test_time_left_comes_from_plantri_counts_then_parts_then_growth():
+    results: dict = {}
+    counts: dict = {}
+    tracker = ProgressTracker([16, 17], 4, results, counts, time.perf_counter())
+    assert tracker.expected() is None  # nothing known yet: the time left is shown as '?'
+    results[Part(17, 0, 4)] = _result(17, 0, 4, 30_000_000)
+    # One part of n = 17 known: 4 such parts, and n = 16 at 1/7.5 of that.
+    assert tracker.expected() == pytest.approx(120_000_000 * (1 + 1 / 7.5))
+    counts[16, "all"] = 17_490_241
+    assert tracker.expected() == pytest.approx(120_000_000 + 17_490_241)
+    tracker.running((0.0, {"part": "n17-part0001of0004", "grains": 5_000_000}))
+    progress = tracker.progress(8)
+    assert (progress.done, progress.total, progress.grains) == (1, 8, 35_000_000)
+    assert progress.seconds_left == pytest.approx(
+        (137_490_241 - 35_000_000) / progress.rate, rel=1e-3
+    )
+    tracker.finished(Part(17, 1, 4))
+    assert tracker.reading() == 0
+
+
+def test_progress_lines_in_a_log_are_spaced_out(capsys):
+    printer = ProgressPrinter(every=3600)
+    for done in (1, 2, 3, 4, 4):
+        printer(CensusProgress(done, 4, 1000 * done, 2500.0, 60.0 * (4 - done)))
+    lines = capsys.readouterr().err.splitlines()
+    assert lines == [
+        "census: 1/4 parts, 1,000 triangulations (2,500/s), about 0:03:00 left",
+        "census: 4/4 parts, 4,000 triangulations (2,500/s), about 0:00:00 left",
+    ]

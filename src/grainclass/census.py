@@ -19,6 +19,7 @@ import os
 import re
 import subprocess
 import sys
+import threading
 import time
 from collections.abc import Callable, Iterable, Iterator, Sequence
 from contextlib import contextmanager
@@ -267,7 +268,7 @@ class CensusProgress:
     seconds_left: float | None
 
 
-class _Tracker:
+class ProgressTracker:
     """What the progress line needs: triangulations read by finished parts and, from the
     workers' events, by running ones; and an estimate of how many the census will read."""
 
@@ -282,15 +283,23 @@ class _Tracker:
         self.ns, self.parts, self.start = ns, parts, start
         self.results, self.plantri_counts = results, plantri_counts  # updated by run_census
         self.skipped_grains = sum(r.grains for r in results.values())
-        self.reading: dict[str, int] = {}
+        self._reading: dict[str, int] = {}  # written from the Dask client's event thread
+        self._lock = threading.Lock()
 
     def running(self, event: tuple[float, dict]) -> None:
         """A worker's event: a running part's triangulations read so far."""
         message = event[1]
-        self.reading[message["part"]] = message["grains"]
+        with self._lock:
+            self._reading[message["part"]] = message["grains"]
 
-    def finished(self, part: Part, result: PartResult) -> None:
-        self.reading.pop(part.name, None)
+    def finished(self, part: Part) -> None:
+        with self._lock:
+            self._reading.pop(part.name, None)
+
+    def reading(self) -> int:
+        """Triangulations read so far by the running parts."""
+        with self._lock:
+            return sum(self._reading.values())
 
     def expected(self) -> float | None:
         """Triangulations in the whole census: plantri's count where known, else the mean part
@@ -313,13 +322,13 @@ class _Tracker:
 
     def progress(self, total_parts: int) -> CensusProgress:
         elapsed = max(time.perf_counter() - self.start, 1e-9)
-        done = sum(r.grains for r in self.results.values())
-        this_run = done - self.skipped_grains + sum(self.reading.values())
+        done = sum(r.grains for r in self.results.values()) + self.reading()
+        this_run = done - self.skipped_grains
         rate = this_run / elapsed
         expected = self.expected()
         left = None
         if expected is not None and rate > 0:
-            left = max(expected - done - sum(self.reading.values()), 0.0) / rate
+            left = max(expected - done, 0.0) / rate
         return CensusProgress(len(self.results), total_parts, this_run, rate, left)
 
 
@@ -405,7 +414,7 @@ def run_census(
 
     failures: list[str] = []
     computed = 0
-    tracker = _Tracker(sorted(set(ns)), parts, results, counts, start)
+    tracker = ProgressTracker(sorted(set(ns)), parts, results, counts, start)
     client.subscribe_topic(PROGRESS_TOPIC, tracker.running)
     pending = set(futures)
     while pending:
@@ -425,7 +434,7 @@ def run_census(
             if isinstance(what, Part):
                 store.save_part(value)
                 results[what] = value
-                tracker.finished(what, value)
+                tracker.finished(what)
                 computed += 1
             else:
                 store.save_check(*what, value)

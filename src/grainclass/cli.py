@@ -21,6 +21,15 @@ Exit codes:
   130  interrupted (no partial output file is left behind)
 """
 
+CENSUS_EXIT_CODES = """\b
+Exit codes:
+  0    every part done, every cross-check passed
+  1    a part failed (the others are kept), the census disagrees with plantri,
+       or an output could not be written
+  2    usage error
+  130  interrupted (finished parts are kept: the same command resumes)
+"""
+
 INPUT_FORMATS = ("auto", "adjacency", "planar_code", "evolver", "voro", "neper", "loops")
 STATUSES = ("ok", "degenerate", "non_simple", "invalid")
 CLASSES = ("stacked", "flag", "flag+1", "flag+1+1", "flag+2", "flag>=3", "sc", "sc+1", "sc>=2")
@@ -379,9 +388,7 @@ def _vertex_counts(
     return sorted(set(ns))
 
 
-@cli.command(
-    "census", epilog=EXIT_CODES.replace("with --strict, bad grains", "a failed part or cross-check")
-)
+@cli.command("census", epilog=CENSUS_EXIT_CODES)
 @click.argument("n_values", nargs=-1, required=True, metavar="N...", callback=_vertex_counts)
 @click.option(
     "-o",
