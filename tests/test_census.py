@@ -289,3 +289,21 @@ def test_progress_lines_in_a_log_are_spaced_out(capsys):
         "census: 1/4 parts, 1,000 triangulations (2,500/s), about 0:03:00 left",
         "census: 4/4 parts, 4,000 triangulations (2,500/s), about 0:00:00 left",
     ]
+
+
+def test_the_same_census_runs_on_an_existing_cluster(client, tmp_path):
+    done = _census(
+        "9",
+        "10",
+        "--parts",
+        "2",
+        "--scheduler",
+        client.scheduler.address,
+        "-o",
+        str(tmp_path),
+        "-q",
+    )
+    assert done.returncode == 0, done.stderr
+    written = pd.read_csv(tmp_path / "classes.csv", dtype={"n": str}).set_index("n")
+    for n in (9, 10):
+        assert tuple(int(written.loc[str(n), c]) for c in CLASS_COLUMNS) == TABLE_II[n]
