@@ -408,7 +408,7 @@ def run_census(
                     plantri,
                     key=f"census-n{n:02d}-{check}",
                     pure=False,
-                    priority=n - 1,
+                    priority=n,  # after the parts of n (submitted first), before smaller n
                 )
                 futures[future] = (n, check)
 
