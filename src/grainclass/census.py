@@ -97,6 +97,7 @@ def count_part(part: Part, chunk_size: int, plantri: str | None = None) -> PartR
         When plantri fails, or reports another number of triangulations than were read.
     """
     from grainclass.parallel import set_jobs
+    from grainclass.pipeline import prefetch
     from grainclass.readers.planar_code import read_planar_code
     from grainclass.summary import merge_tallies, tally_batch
 
@@ -107,8 +108,10 @@ def count_part(part: Part, chunk_size: int, plantri: str | None = None) -> PartR
     grains = 0
     publish, published = _progress_publisher(), time.monotonic()
     with subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE) as process:
-        for records in read_planar_code(
-            process.stdout, f"plantri {part.name}", chunk_size, raw=True
+        # Read in a thread of its own: read in turn with the counting, plantri would wait on
+        # a full pipe while a chunk is counted (the task took plantri's time plus ours).
+        for records in prefetch(
+            read_planar_code(process.stdout, f"plantri {part.name}", chunk_size, raw=True)
         ):
             tallied = tally_batch(records)
             grains += len(tallied)
@@ -401,6 +404,8 @@ def run_census(
     for n in sorted(set(ns), reverse=True):
         for check in CHECKS:
             if (n, check) not in counts:
+                # Before the parts of n: a long -u runs beside them, not alone at the end,
+                # and its count sharpens the time left.
                 future = client.submit(
                     plantri_count,
                     n,
@@ -408,7 +413,7 @@ def run_census(
                     plantri,
                     key=f"census-n{n:02d}-{check}",
                     pure=False,
-                    priority=n,  # after the parts of n (submitted first), before smaller n
+                    priority=n + 1,
                 )
                 futures[future] = (n, check)
 
