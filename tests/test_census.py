@@ -142,8 +142,12 @@ def test_interrupted_census_resumes_where_it_stopped(tmp_path, plantri):
     slow = _fake_plantri(tmp_path, "slow-plantri", plantri, 'case "$*" in */8) sleep 0.5;; esac')
     out = tmp_path / "census"
     args = ["12", "--parts", "8", "--workers", "1", "-o", str(out), "--plantri", slow, "-q"]
+    # Python's Ctrl-C handler set explicitly: a test run in the background inherits SIGINT
+    # ignored, and Python then leaves it so.
+    start = "import signal; signal.signal(signal.SIGINT, signal.default_int_handler); "
+    start += "from grainclass.cli import main; main()"
     run = subprocess.Popen(
-        [sys.executable, "-m", "grainclass", "census", *args],
+        [sys.executable, "-c", start, "census", *args],
         stdout=subprocess.PIPE,
         stderr=subprocess.PIPE,
     )
