@@ -8,8 +8,10 @@ graphs that are not triangulations, and on damaged records.
 from __future__ import annotations
 
 import io
+import os
 import random
 import struct
+import sys
 
 import numpy as np
 import pytest
@@ -134,3 +136,21 @@ def test_group_rows_packs_or_compares_whole_rows():
         distinct = np.array([[0, 5], [1, 2], [3, 3]]) * scale
         assert (rows * scale)[first].tolist() == distinct.tolist()
         assert inverse.tolist() == [1, 0, 1, 0, 2]
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="F_SETPIPE_SZ is Linux's")
+def test_pipes_are_read_with_a_larger_buffer(tmp_path):
+    import fcntl
+
+    from grainclass.readers import PIPE_BYTES, enlarge_pipe
+
+    read_end, write_end = os.pipe()
+    with os.fdopen(read_end, "rb") as reader, os.fdopen(write_end, "wb"):
+        before = fcntl.fcntl(reader.fileno(), fcntl.F_GETPIPE_SZ)
+        enlarge_pipe(reader)
+        assert before < PIPE_BYTES
+        assert fcntl.fcntl(reader.fileno(), fcntl.F_GETPIPE_SZ) == PIPE_BYTES
+    path = tmp_path / "file"
+    path.write_bytes(b"")
+    with path.open("rb") as regular:
+        enlarge_pipe(regular)  # not a pipe: left alone, no error

@@ -98,6 +98,7 @@ def count_part(part: Part, chunk_size: int, plantri: str | None = None) -> PartR
     """
     from grainclass.parallel import set_jobs
     from grainclass.pipeline import prefetch
+    from grainclass.readers import enlarge_pipe
     from grainclass.readers.planar_code import read_planar_code
     from grainclass.summary import merge_tallies, tally_batch
 
@@ -108,6 +109,7 @@ def count_part(part: Part, chunk_size: int, plantri: str | None = None) -> PartR
     grains = 0
     publish, published = _progress_publisher(), time.monotonic()
     with subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE) as process:
+        enlarge_pipe(process.stdout)
         # Read in a thread of its own: read in turn with the counting, plantri would wait on
         # a full pipe while a chunk is counted (the task took plantri's time plus ours).
         for records in prefetch(

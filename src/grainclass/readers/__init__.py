@@ -9,6 +9,7 @@ from __future__ import annotations
 import io
 import os
 import re
+import stat
 import sys
 from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
@@ -86,13 +87,33 @@ def _expand(paths: Sequence[str]) -> list[str]:
 _wrapped_stdin: dict[int, BinaryIO] = {}
 
 
+PIPE_BYTES = 1 << 20
+
+
+def enlarge_pipe(stream: BinaryIO) -> None:
+    """Give a pipe 1 MB of buffer (Linux's default is 64 kB, and 1 MB the most an unprivileged
+    process may ask for): a writer as fast as plantri then waits less often for the reader, and
+    both make fewer system calls (a quarter of n = 16 through summarize's counting: 6.0 s, with
+    1 MB 5.1-5.3 s). Anything that is not a pipe, or a refusal, leaves it as it is."""
+    try:
+        import fcntl  # not on Windows; F_SETPIPE_SZ only on Linux
+
+        fd = stream.fileno()
+        if stat.S_ISFIFO(os.fstat(fd).st_mode):
+            fcntl.fcntl(fd, fcntl.F_SETPIPE_SZ, PIPE_BYTES)
+    except (ImportError, AttributeError, OSError, ValueError, io.UnsupportedOperation):
+        pass
+
+
 def stdin() -> BinaryIO:
-    """Standard input as a binary stream that can ``peek()`` (for sniffing).
+    """Standard input as a binary stream that can ``peek()`` (for sniffing); a pipe gets a
+    larger buffer (:func:`enlarge_pipe`).
 
     A replaced stdin (an embedding program, a test) may lack peek(); it is wrapped once, so that
     every reader sees the bytes another one peeked at.
     """
     stream = sys.stdin.buffer
+    enlarge_pipe(stream)
     if hasattr(stream, "peek"):
         return stream
     if id(stream) not in _wrapped_stdin:
