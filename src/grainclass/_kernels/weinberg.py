@@ -20,9 +20,10 @@ from grainclass._numba import njit
 
 
 @njit
-def _corners(n, off, rot, pos, corner, corner_nbr, left_face):
+def _corners(n, off, rot, pos, corner, corner_nbr, corner_back, left_face):
     """The grain's edge graph: ``corner_nbr[T]`` = the 3 corners next to corner T, in
-    counter-clockwise order, and ``left_face[T, k]`` the size of the grain face on the left of
+    counter-clockwise order, ``corner_back[T, k]`` the index of the edge back from
+    ``corner_nbr[T, k]`` to T, and ``left_face[T, k]`` the size of the grain face on the left of
     the edge T -> corner_nbr[T, k] (the face on its right is the left face of edge k + 1).
     Corners are the dual's triangles; returns their number.
 
@@ -67,6 +68,13 @@ def _corners(n, off, rot, pos, corner, corner_nbr, left_face):
             left_face[t, 0] = e - s
             left_face[t, 1] = ex - sx
             left_face[t, 2] = off[y + 1] - off[y]
+    for t in range(count):  # once per edge here, not once per step of every walk
+        for k in range(3):
+            nxt = corner_nbr[t, k]
+            back = 0
+            while corner_nbr[nxt, back] != t:
+                back += 1
+            corner_back[t, k] = back
     return count
 
 
@@ -78,7 +86,9 @@ def _turned(k, turn):
 
 
 @njit
-def _walk(corner_nbr, t, start, first, turn, best, state, stamp, gen, label, used, code):
+def _walk(
+    corner_nbr, corner_back, t, start, first, turn, best, state, stamp, gen, label, used, code
+):
     """One Weinberg walk from ``start`` along its edge ``first``, turning by ``turn`` (-1 right,
     +1 left, in counter-clockwise index steps). Compares with ``best`` as it goes: returns -1 if
     the code is smaller (``code`` then holds it), 0 if equal, +1 as soon as it is larger.
@@ -94,9 +104,7 @@ def _walk(corner_nbr, t, start, first, turn, best, state, stamp, gen, label, use
     for step in range(1, length):
         used[cur, k] = gen
         nxt = corner_nbr[cur, k]
-        back = 0
-        while corner_nbr[nxt, back] != cur:
-            back += 1
+        back = corner_back[cur, k]
         if stamp[nxt] != gen:
             stamp[nxt] = gen
             label[nxt] = next_label
@@ -119,7 +127,7 @@ def _walk(corner_nbr, t, start, first, turn, best, state, stamp, gen, label, use
 
 
 @njit
-def _weinberg(corner_nbr, left_face, t, best, stamp, label, used, code):
+def _weinberg(corner_nbr, corner_back, left_face, t, best, stamp, label, used, code):
     """Canonical code into ``best``; returns (symmetry, chirality).
 
     A walk first goes round the face on its turning side and writes 1 again after as many
@@ -146,7 +154,19 @@ def _weinberg(corner_nbr, left_face, t, best, stamp, label, used, code):
                     continue
                 state = -1 if best[0] < 0 else 0
                 result = _walk(
-                    corner_nbr, t, start, first, turn, best, state, stamp, gen, label, used, code
+                    corner_nbr,
+                    corner_back,
+                    t,
+                    start,
+                    first,
+                    turn,
+                    best,
+                    state,
+                    stamp,
+                    gen,
+                    label,
+                    used,
+                    code,
                 )
                 gen += 1
                 if result < 0:
@@ -207,6 +227,7 @@ def _weinberg_batch(
     pos = np.empty((max_faces, max_faces), np.int64)
     corner = np.empty(darts, np.int64)
     corner_nbr = np.empty((t_max, 3), np.int64)
+    corner_back = np.empty((t_max, 3), np.int64)
     left_face = np.empty((t_max, 3), np.int64)
     stamp = np.zeros(t_max, np.int64)
     label = np.empty(t_max, np.int64)
@@ -219,11 +240,11 @@ def _weinberg_batch(
         n = face_offsets[g + 1] - f0
         off = nbr_offsets[f0 : f0 + n + 1] - nbr_offsets[f0]
         rot = rotations[nbr_offsets[f0] : nbr_offsets[f0 + n]]
-        t = _corners(n, off, rot, pos, corner, corner_nbr, left_face)
+        t = _corners(n, off, rot, pos, corner, corner_nbr, corner_back, left_face)
         for c in range(t):
             stamp[c] = 0
             used[c, 0] = used[c, 1] = used[c, 2] = 0
         best = codes[code_offsets[g] : code_offsets[g] + 3 * t + 1]
         symmetry[g], chirality[g] = _weinberg(
-            corner_nbr, left_face, t, best, stamp, label, used, code
+            corner_nbr, corner_back, left_face, t, best, stamp, label, used, code
         )
