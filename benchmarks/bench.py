@@ -296,7 +296,9 @@ def bench_census(sizes: list[int], parts: int, work: Path) -> None:
     plantri = find_plantri()
     cores = os.cpu_count() or 1
     gc = " ".join(GRAINCLASS)
-    subprocess.run(f"{gc} census 9 --parts 2 -o {work / 'census-warm'} -q", shell=True, check=True)
+    subprocess.run(
+        f"{gc} census 9 --parts 2 -o {work / 'census-warm'} -q > /dev/null", shell=True, check=True
+    )
     print(f"(g) census, {parts} parts per n, {cores} workers, against plantri on the same parts:")
     for n in sizes:
         indices = " ".join(str(i) for i in range(parts))

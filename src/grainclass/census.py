@@ -370,7 +370,7 @@ def run_census(
     plantri : str, optional
         The plantri binary as the workers see it (default: found on each worker).
     report : callable, optional
-        Called with a :class:`CensusProgress` after each finished part.
+        Called with a :class:`CensusProgress` when tasks finish, and every two seconds.
     """
     from distributed import wait
 
@@ -435,6 +435,8 @@ def run_census(
                 value = future.result()
             except Exception as exc:  # a failed part is reported; the others go on
                 failures.append(f"{_task_name(what)}: {exc}")
+                if isinstance(what, Part):
+                    tracker.finished(what)
                 continue
             finally:
                 future.release()
