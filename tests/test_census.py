@@ -311,3 +311,14 @@ def test_the_same_census_runs_on_an_existing_cluster(client, tmp_path):
     written = pd.read_csv(tmp_path / "classes.csv", dtype={"n": str}).set_index("n")
     for n in (9, 10):
         assert tuple(int(written.loc[str(n), c]) for c in CLASS_COLUMNS) == TABLE_II[n]
+
+
+def test_an_unreadable_checkpoint_is_computed_again(client, tmp_path):
+    first = run_census([9], 2, tmp_path, client)
+    (tmp_path / "parts" / "n09-part0001of0002.parquet").write_bytes(b"not parquet")
+    (tmp_path / "checks" / "n09-flag.json").write_text("{")
+    again = run_census([9], 2, tmp_path, client)
+    assert (again.computed, again.skipped) == (1, 1)
+    assert again.ok
+    pd.testing.assert_frame_equal(again.summary.classes, first.summary.classes)
+    assert _classes_row(again.summary, 9) == TABLE_II[9]

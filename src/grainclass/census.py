@@ -206,14 +206,19 @@ class Checkpoints:
             pq.write_table(table.replace_schema_metadata(metadata), sink)
 
     def load_part(self, part: Part) -> PartResult | None:
-        """The part's result if it finished in an earlier run, else None."""
+        """The part's result if it finished in an earlier run, else None (also for a file that
+        cannot be read: the part is then computed again and the file replaced)."""
+        import pyarrow as pa
         import pyarrow.parquet as pq
 
         path = self.part_path(part)
         if not path.exists():
             return None
-        table = pq.read_table(path)
-        about = json.loads(table.schema.metadata[b"grainclass.census"])
+        try:
+            table = pq.read_table(path)
+            about = json.loads(table.schema.metadata[b"grainclass.census"])
+        except (OSError, pa.ArrowException, KeyError, TypeError, ValueError):
+            return None
         counts = table.replace_schema_metadata(None).to_pandas()
         return PartResult(part, counts, about["grains"], about["plantri_count"], about["seconds"])
 
@@ -225,8 +230,11 @@ class Checkpoints:
             sink.write(json.dumps(record).encode())
 
     def load_check(self, n: int, check: str) -> int | None:
-        path = self.check_path(n, check)
-        return json.loads(path.read_text())["count"] if path.exists() else None
+        """plantri's count from an earlier run, else None (also for an unreadable file)."""
+        try:
+            return int(json.loads(self.check_path(n, check).read_text())["count"])
+        except (OSError, KeyError, TypeError, ValueError):
+            return None
 
 
 @dataclass(frozen=True)
