@@ -49,7 +49,7 @@ reproduce-voronoi: install
 	$(BIN)/python scripts/reproduce_voronoi.py
 
 # Every triangulation with n = 4..17 vertices on a local Dask cluster, checked against plantri
-# and against the paper up to n = 14 (about ten minutes on two cores; resumes if interrupted).
+# and against the paper up to n = 14 (under four minutes on two cores; resumes if interrupted).
 reproduce-census: install
 	$(BIN)/python scripts/reproduce_census.py
 
