@@ -20,13 +20,8 @@ from pathlib import Path
 import pandas as pd
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests"))
+from grainclass.render import render_frame
 from test_enumeration import CLASS_COLUMNS, SPLIT, TABLE_II
-
-
-def _markdown(table: pd.DataFrame) -> str:
-    lines = ["| " + " | ".join(table.columns) + " |", "|" + "---:|" * len(table.columns)]
-    lines += ["| " + " | ".join(map(str, row)) + " |" for row in table.itertuples(index=False)]
-    return "\n".join(lines)
 
 
 def main() -> int:
@@ -62,8 +57,8 @@ def main() -> int:
     provenance = json.loads((out / "provenance.json").read_text())
     print(f"\ncensus of n = {args.n} in {seconds:.0f} s (plantri {provenance['plantri']})")
     print("the paper's rows (n <= 14): " + ("all equal" if same else "DIFFER"))
-    print("\nTable II, extended\n")
-    print(_markdown(classes[classes["n"] != "total"]))
+    print()
+    print(render_frame(classes[classes["n"] != "total"], "markdown", "Table II, extended"))
     labels = split.copy()
     for column in split.columns[1:]:
         k = int(column)
@@ -71,15 +66,14 @@ def main() -> int:
             f"{count} x {k}:{n - 4 - k}" if count else ""
             for n, count in zip(split["n"], split[column], strict=True)
         ]
-    print("\nflag triangulations by split type k:m, extended\n")
-    print(_markdown(labels))
+    print(render_frame(labels, "markdown", "flag triangulations by split type k:m, extended"))
     rounds = pd.read_csv(out / "round.csv")
     rounds = rounds[rounds["grains"].str.startswith("n=")]
     rounds.insert(0, "n", rounds.pop("grains").str[2:])
     for column in rounds.columns[2:]:
         rounds[column] = rounds[column].map(lambda x: f"{x:.2f}")
-    print("\npercent in round<=k and in sc, all triangulations with n vertices, extended\n")
-    print(_markdown(rounds[rounds["n"].astype(int) >= 10]))
+    title = "percent in round<=k and in sc, all triangulations with n vertices, extended"
+    print(render_frame(rounds[rounds["n"].astype(int) >= 10], "markdown", title))
     return 0 if same else 1
 
 

@@ -80,7 +80,17 @@ def plantri_command(plantri: str | None) -> str:
     return plantri or find_plantri()
 
 
-def _reported_count(stderr: bytes, command: list[str]) -> int:
+def _reported_count(stderr: bytes, command: list[str], returncode: int = 0) -> int:
+    """The number of triangulations plantri says it wrote or generated.
+
+    Raises
+    ------
+    CensusError
+        When plantri failed, or said no such number.
+    """
+    if returncode:
+        message = stderr.decode(errors="replace").strip()
+        raise CensusError(f"{' '.join(command)} failed (exit {returncode}): {message}")
     found = _COUNT_LINE.search(stderr)
     if not found:
         message = stderr.decode(errors="replace").strip()
@@ -124,10 +134,7 @@ def count_part(part: Part, chunk_size: int, plantri: str | None = None) -> PartR
                 publish({"part": part.name, "grains": grains})
                 published = time.monotonic()
         stderr = process.stderr.read()
-    if process.returncode:
-        message = stderr.decode(errors="replace").strip()
-        raise CensusError(f"{' '.join(command)} failed (exit {process.returncode}): {message}")
-    reported = _reported_count(stderr, command)
+    reported = _reported_count(stderr, command, process.returncode)
     if reported != grains:
         raise CensusError(
             f"{' '.join(command)}: plantri reported {reported} triangulations, {grains} were read"
@@ -155,10 +162,7 @@ def plantri_count(n: int, check: str, plantri: str | None = None) -> int:
         return 0
     command = [plantri_command(plantri), *flags, str(n)]
     done = subprocess.run(command, capture_output=True, check=False)
-    if done.returncode:
-        message = done.stderr.decode(errors="replace").strip()
-        raise CensusError(f"{' '.join(command)} failed (exit {done.returncode}): {message}")
-    return _reported_count(done.stderr, command)
+    return _reported_count(done.stderr, command, done.returncode)
 
 
 def plantri_version(plantri: str | None = None) -> str:
