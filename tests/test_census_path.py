@@ -129,13 +129,44 @@ def test_cut_off_record_is_counted_as_invalid(plantri_output):
     assert tally.counts["status"].tolist() == ["invalid"]
 
 
+def test_batches_keep_their_bytes_while_buffers_are_reused(plantri_output, monkeypatch):
+    # Blocks of 256 bytes: the stream goes through many buffers. Batches still held must keep
+    # their bytes (a buffer is reused only once nothing refers to it), and batches dropped as
+    # they come must classify as one batch of everything does.
+    import grainclass.readers.planar_code as reader
+
+    data = plantri_output(10).read_bytes()  # 233 triangulations of 59 bytes
+    whole = grain_codes(next(read_planar_code(io.BytesIO(data), "x", 10**6, raw=True)))
+    assert len(whole.class_code) == 233
+    monkeypatch.setattr(reader, "BLOCK_BYTES", 256)
+    held = list(read_planar_code(io.BytesIO(data), "x", 3, raw=True))
+    assert len(held) > 50
+    assert b"".join(b.buf.tobytes() for b in held) == data[len(b">>planar_code<<") :]
+    batches = read_planar_code(io.BytesIO(data), "x", 3, raw=True)
+    streamed = [grain_codes(b).class_code for b in batches]
+    np.testing.assert_array_equal(np.concatenate(streamed), whole.class_code)
+
+
 def test_group_rows_packs_or_compares_whole_rows():
     rows = np.array([[1, 2], [0, 5], [1, 2], [0, 5], [3, 3]])
     for scale in (1, 2**40):  # 2**40: too wide to pack two columns into one int64
-        first, inverse = group_rows(rows * scale)
-        distinct = np.array([[0, 5], [1, 2], [3, 3]]) * scale
-        assert (rows * scale)[first].tolist() == distinct.tolist()
-        assert inverse.tolist() == [1, 0, 1, 0, 2]
+        first, group = group_rows(list((rows * scale).T))
+        assert first.tolist() == [0, 1, 4]  # in order of first appearance
+        assert group.tolist() == [0, 1, 0, 1, 2]
+
+
+def test_group_rows_hash_table_grows_past_its_first_size():
+    # 5,000 distinct keys (the table starts at 1,024 slots), each repeated, checked against a
+    # grouping by Python dict.
+    rng = np.random.default_rng(7)
+    a, b = rng.integers(0, 100, 20_000), rng.integers(0, 50, 20_000)
+    first, group = group_rows([a, b])
+    seen: dict[tuple[int, int], int] = {}
+    expected = [
+        seen.setdefault((x, y), len(seen)) for x, y in zip(a.tolist(), b.tolist(), strict=True)
+    ]
+    assert group.tolist() == expected
+    assert [(a[i], b[i]) for i in first] == list(seen)
 
 
 @pytest.mark.skipif(not sys.platform.startswith("linux"), reason="F_SETPIPE_SZ is Linux's")

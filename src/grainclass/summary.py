@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from collections.abc import Iterable
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
@@ -112,22 +112,29 @@ def _names(codes: np.ndarray, names: tuple[str, ...]) -> np.ndarray:
     return np.array([None, *names], dtype=object)[codes.astype(np.int64) + 1]
 
 
-def group_rows(columns: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Distinct rows of a non-negative int64 matrix: ``(first, inverse)`` as ``np.unique``
-    gives them (first occurrence of each distinct row, and each row's group).
+def group_rows(columns: Sequence[np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
+    """Distinct rows of equal-length, non-negative integer columns: ``(first, group)``, the
+    first row of each distinct row in order of first appearance, and each row's group.
 
-    Rows are packed into one int64 per row when the column maxima allow (fast); otherwise
-    they are compared whole.
+    Rows are packed into one int64 each when the column maxima allow and grouped by hashing, in
+    one pass (:func:`grainclass._kernels.groups._group_keys`); otherwise they are compared whole.
     """
-    radices = [int(c.max()) + 1 if len(c) else 1 for c in columns.T]
+    from grainclass._kernels.groups import _group_keys
+
+    length = len(columns[0])
+    radices = [int(c.max()) + 1 if length else 1 for c in columns]
     if float(np.prod([float(r) for r in radices])) < 2.0**62:
-        keys = np.zeros(len(columns), np.int64)
-        for column, radix in zip(columns.T, radices, strict=True):
-            keys = keys * radix + column
-        _, first, inverse = np.unique(keys, return_index=True, return_inverse=True)
-    else:
-        _, first, inverse = np.unique(columns, axis=0, return_index=True, return_inverse=True)
-    return first, inverse.reshape(-1)
+        keys = np.zeros(length, np.int64)
+        for column, radix in zip(columns, radices, strict=True):
+            keys *= radix
+            keys += column
+        return _group_keys(keys)
+    rows = np.stack(columns, axis=1).astype(np.int64)
+    _, first, inverse = np.unique(rows, axis=0, return_index=True, return_inverse=True)
+    order = np.argsort(first)
+    rank = np.empty_like(order)
+    rank[order] = np.arange(len(order))
+    return first[order], rank[inverse.reshape(-1)]
 
 
 def tally_batch(batch: GrainBatch | PlanarCodeRecords, include_boundary: bool = False) -> Tally:
@@ -138,45 +145,54 @@ def tally_batch(batch: GrainBatch | PlanarCodeRecords, include_boundary: bool = 
     codes = grain_codes(batch)
     volume, area = getattr(batch, "volume", None), getattr(batch, "area", None)
     boundary = getattr(batch, "boundary", None)
-    keep = np.ones(len(batch), np.bool_)
+    keep = None
     if boundary is not None and not include_boundary:
         keep = boundary != 1
     ok = codes.status == kernel_codes.OK
-    q = np.full(len(batch), np.nan)
+    round_k = np.where(ok & (codes.family != kernel_codes.SC), codes.truncations, -1)
+    keys = [codes.status, codes.family, codes.class_code, codes.n_faces, round_k, codes.split_k]
+    triangles = codes.triangles
+    q = None
     if volume is not None and area is not None:
         with np.errstate(divide="ignore", invalid="ignore"):
             q = np.where(ok, 36 * np.pi * volume**2 / area**3, np.nan)
-    round_k = np.where(ok & (codes.family != kernel_codes.SC), codes.truncations, -1)
+    if keep is not None:
+        keys = [column[keep] for column in keys]
+        triangles = triangles[keep]
+        q = None if q is None else q[keep]
     # Codes shifted to be >= 0 (-1 is null), one row per kept grain.
-    keys = np.stack(
-        [codes.status, codes.family, codes.class_code, codes.n_faces, round_k, codes.split_k],
-        axis=1,
-    ).astype(np.int64)[keep] + np.array([0, 1, 1, 1, 1, 1])
-    first, group = group_rows(keys)
-    q, triangles = q[keep], codes.triangles[keep]
-    has_q = ~np.isnan(q)
+    shifted = [keys[0].astype(np.int64), *(np.add(c, 1, dtype=np.int64) for c in keys[1:])]
+    first, group = group_rows(shifted)
     groups = len(first)
+    kept = len(group)
 
     def sums(weights: np.ndarray) -> np.ndarray:
         return np.bincount(group, weights, minlength=groups)
 
-    rows = keys[first] - np.array([0, 1, 1, 1, 1, 1])
+    if q is None:  # no geometry: every grain's q is null
+        q_count, q_sum, q_squares = np.zeros(groups, np.int64), np.zeros(groups), np.zeros(groups)
+    else:
+        has_q = ~np.isnan(q)
+        q_count = sums(has_q).astype(np.int64)
+        q_sum = sums(np.where(has_q, q, 0.0))
+        q_squares = sums(np.where(has_q, q * q, 0.0))
+    rows = [column[first] for column in keys]
     counts = pd.DataFrame(
         {
-            schema.STATUS: _names(rows[:, 0], kernel_codes.STATUS_NAMES),
-            schema.N_FACES: np.where(rows[:, 3] >= 0, rows[:, 3], np.nan),
-            schema.FAMILY: _names(rows[:, 1], kernel_codes.FAMILY_NAMES),
-            schema.CLASS: _names(rows[:, 2], schema.CLASSES),
-            schema.ROUND_K: np.where(rows[:, 4] >= 0, rows[:, 4], np.nan),
-            schema.SPLIT_K: np.where(rows[:, 5] >= 0, rows[:, 5], np.nan),
+            schema.STATUS: _names(rows[0], kernel_codes.STATUS_NAMES),
+            schema.N_FACES: np.where(rows[3] >= 0, rows[3], np.nan),
+            schema.FAMILY: _names(rows[1], kernel_codes.FAMILY_NAMES),
+            schema.CLASS: _names(rows[2], schema.CLASSES),
+            schema.ROUND_K: np.where(rows[4] >= 0, rows[4], np.nan),
+            schema.SPLIT_K: np.where(rows[5] >= 0, rows[5], np.nan),
             TRIANGLES: sums(triangles).astype(np.int64),
             COUNT: np.bincount(group, minlength=groups),
-            Q_COUNT: sums(has_q).astype(np.int64),
-            Q_SUM: sums(np.where(has_q, q, 0.0)),
-            Q_SQUARES: sums(np.where(has_q, q * q, 0.0)),
+            Q_COUNT: q_count,
+            Q_SUM: q_sum,
+            Q_SQUARES: q_squares,
         }
     )
-    return Tally(counts, int(keep.sum()), boundary_excluded=int(len(batch) - keep.sum()))
+    return Tally(counts, kept, boundary_excluded=len(batch) - kept)
 
 
 def _distinct(hashes: list[np.ndarray]) -> int | None:

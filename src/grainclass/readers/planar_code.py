@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import sys
 from collections.abc import Iterator
 from dataclasses import dataclass
 from typing import BinaryIO
@@ -69,48 +70,81 @@ def read_planar_code(
     from grainclass._kernels.planar_code import _fill, _scan
     from grainclass.arrow import decimal_strings
 
-    big_endian, pending = _read_header(stream, stream.read(32))
+    big_endian, head = _read_header(stream, stream.read(32))
+    buffers = _BufferPool()
+    buffer = np.frombuffer(head, np.uint8)  # bytes not yet parsed: buffer[pos:]
+    at_end, pos = False, 0
     record = 1
-    at_end = False
     while True:
-        while not at_end and len(pending) < BLOCK_BYTES:
-            block = stream.read(BLOCK_BYTES)
-            at_end = not block
-            pending += block
-        buf = np.frombuffer(pending, np.uint8)
+        if not at_end and len(buffer) - pos < BLOCK_BYTES:
+            buffer, at_end = buffers.refill(stream, buffer[pos:])
+            pos = 0
+        buf = buffer[pos:]
+        buf.flags.writeable = False  # the batches share it; one numba signature for all callers
         starts = np.empty(chunk_size + 1, np.int64)
         records, vertices, entries, consumed = _scan(buf, big_endian, chunk_size, starts)
         if records == 0:
             if at_end:
-                if pending:
-                    yield _cut_off(source, record, len(pending))
+                if len(buf):
+                    yield _cut_off(source, record, len(buf))
                 return
-            block = stream.read(BLOCK_BYTES)  # one record longer than a block: read on
-            at_end = not block
-            pending += block
+            buffer, at_end = buffers.refill(stream, buf)  # a record longer than a block
+            pos = 0
             continue
         if raw:
             yield PlanarCodeRecords(
                 source, record, buf[:consumed], starts[: records + 1], big_endian
             )
-            record += records
-            pending = pending[consumed:]
-            continue
-        face_offsets = np.empty(records + 1, np.int64)
-        nbr_offsets = np.empty(vertices + 1, np.int64)
-        neighbors = np.empty(entries, np.int32)
-        _fill(buf, big_endian, records, face_offsets, nbr_offsets, neighbors)
-        yield GrainBatch(
-            source=source,
-            grain_id=decimal_strings(np.arange(record, record + records)),
-            location=np.arange(record, record + records, dtype=np.int64),
-            location_kind="record",
-            face_offsets=face_offsets,
-            nbr_offsets=nbr_offsets,
-            neighbors=neighbors,
-        )
+        else:
+            face_offsets = np.empty(records + 1, np.int64)
+            nbr_offsets = np.empty(vertices + 1, np.int64)
+            neighbors = np.empty(entries, np.int32)
+            _fill(buf, big_endian, records, face_offsets, nbr_offsets, neighbors)
+            yield GrainBatch(
+                source=source,
+                grain_id=decimal_strings(np.arange(record, record + records)),
+                location=np.arange(record, record + records, dtype=np.int64),
+                location_kind="record",
+                face_offsets=face_offsets,
+                nbr_offsets=nbr_offsets,
+                neighbors=neighbors,
+            )
         record += records
-        pending = pending[consumed:]
+        pos += consumed
+
+
+class _BufferPool:
+    """Buffers for a stream's bytes, each filled once and then only read: the batches yielded
+    are views into it. A buffer is reused once no view refers to it any more, because a fresh
+    4 MB buffer costs a thousand page faults, more than the copy into it."""
+
+    SPARE = 8
+
+    def __init__(self) -> None:
+        self._owners: list[np.ndarray] = []
+
+    def _take(self, size: int) -> np.ndarray:
+        for i in range(len(self._owners)):
+            # Referenced only by the list and by getrefcount's argument: no batch holds a view.
+            if len(self._owners[i]) >= size and sys.getrefcount(self._owners[i]) == 2:
+                return self._owners[i]
+        owner = np.empty(size, np.uint8)
+        if len(self._owners) < self.SPARE:
+            self._owners.append(owner)
+        return owner
+
+    def refill(self, stream: BinaryIO, rest: np.ndarray) -> tuple[np.ndarray, bool]:
+        """``rest`` followed by up to BLOCK_BYTES more of the stream, and whether it has ended."""
+        owner = self._take(len(rest) + BLOCK_BYTES)
+        owner[: len(rest)] = rest
+        filled = len(rest)
+        with memoryview(owner) as view:
+            while filled < len(rest) + BLOCK_BYTES:
+                got = stream.readinto(view[filled : len(rest) + BLOCK_BYTES])
+                if not got:
+                    break
+                filled += got
+        return owner[:filled], filled < len(rest) + BLOCK_BYTES
 
 
 def _cut_off(source: str, record: int, n_bytes: int) -> GrainBatch:
