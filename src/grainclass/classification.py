@@ -122,39 +122,45 @@ class _Classified:
     tree_bytes: np.ndarray
     tree_length: np.ndarray
 
+    @classmethod
+    def empty(cls, batch: GrainBatch, strings: bool) -> _Classified:
+        """Output arrays for the kernels, sized for ``batch`` (3n bytes of tree string per
+        grain when ``strings``)."""
+        g = len(batch)
+        parsed = np.ones(g, np.bool_)
+        parsed[list(batch.parse_errors)] = False
+        tree_offsets = np.zeros(g + 1, np.int64)
+        if strings:
+            np.cumsum(3 * batch.n_faces, out=tree_offsets[1:])
+        return cls(
+            parsed=parsed,
+            status=np.zeros(g, np.int8),
+            consistent=np.zeros(g, np.bool_),
+            err=np.zeros((g, 3), np.int64),
+            family=np.full(g, -1, np.int8),
+            fundamental=np.zeros(g, np.int32),
+            n_trees=np.zeros(g, np.int32),
+            depth=np.zeros(g, np.int32),
+            belts=np.zeros((g, 3), np.int64),
+            tree_offsets=tree_offsets,
+            tree_bytes=np.empty(int(tree_offsets[-1]), np.uint8),
+            tree_length=np.zeros(g, np.int64),
+        )
+
 
 def _classify_csr(batch: GrainBatch, max_small: int, strings: bool) -> _Classified:
     """The fast path over the batch, then the general path over the grains it left."""
     from grainclass._kernels.batch import _classify_batch, _classify_general_batch
 
-    g = len(batch)
-    parsed = np.ones(g, np.bool_)
-    parsed[list(batch.parse_errors)] = False
-    tree_offsets = np.zeros(g + 1, np.int64)
-    if strings:
-        np.cumsum(3 * batch.n_faces, out=tree_offsets[1:])
-    out = _Classified(
-        parsed=parsed,
-        status=np.zeros(g, np.int8),
-        consistent=np.zeros(g, np.bool_),
-        err=np.zeros((g, 3), np.int64),
-        family=np.full(g, -1, np.int8),
-        fundamental=np.zeros(g, np.int32),
-        n_trees=np.zeros(g, np.int32),
-        depth=np.zeros(g, np.int32),
-        belts=np.zeros((g, 3), np.int64),
-        tree_offsets=tree_offsets,
-        tree_bytes=np.empty(int(tree_offsets[-1]), np.uint8),
-        tree_length=np.zeros(g, np.int64),
-    )
+    out = _Classified.empty(batch, strings)
     csr = (batch.face_offsets, batch.nbr_offsets, batch.neighbors)
     strings_out = (out.tree_offsets, out.tree_bytes, out.tree_length)
     rows = (out.family, out.fundamental, out.n_trees, out.depth, out.belts)
     run_ranges(
         _classify_batch,
-        g,
+        len(batch),
         *csr,
-        parsed,
+        out.parsed,
         max_small,
         strings,
         out.status,
@@ -283,34 +289,42 @@ def classify(
     >>> row["class"], row["split_k"], row["split_m"], row["penalty"]
     ('flag', 1, 1, 18)
     """
-    from grainclass._kernels.columns import _code_strings, _compact, _p_vectors
+    out = _classify_csr(batch, max_bitset_faces, strings=True)
+    return _table(batch, out, _types(batch, out, types))
+
+
+@dataclass(frozen=True)
+class _Types:
+    """Weinberg vectors (grain g's at ``weinberg[code_offsets[g]:code_offsets[g + 1]]``),
+    symmetry orders and chirality, for the grains in ``computed``."""
+
+    computed: np.ndarray
+    code_offsets: np.ndarray
+    weinberg: np.ndarray
+    symmetry: np.ndarray
+    chirality: np.ndarray
+
+
+def _types(batch: GrainBatch, out: _Classified, types: bool) -> _Types:
+    """The Weinberg walks for the ok grains (for none unless ``types``)."""
     from grainclass._kernels.weinberg import _rotations, _weinberg_batch
 
     g = len(batch)
     n_faces = batch.n_faces
-    out = _classify_csr(batch, max_bitset_faces, strings=True)
-    parsed = out.parsed
-    status, consistent, err, family = out.status, out.consistent, out.err, out.family
-    fundamental, n_trees, depth, belts = out.fundamental, out.n_trees, out.depth, out.belts
-    tree_offsets, tree_bytes, tree_length = out.tree_offsets, out.tree_bytes, out.tree_length
-
-    ok = status == codes.OK
-    truncations = n_faces - fundamental
-    stacked = family == codes.STACKED
-    has_trees = ok & ~stacked
-    is_flag = (family == codes.FLAG) & (truncations == 0)
-    p_offsets, p_counts, triangles = _p_vectors(batch.face_offsets, batch.nbr_offsets, ok)
-    trees = string_array(*_compact(tree_offsets, tree_bytes, tree_length), has_trees)
-    split_k = belts[:, 0]
-    with_type = ok & types
+    ok = out.status == codes.OK
+    computed = ok & types
     code_offsets = np.zeros(g + 1, np.int64)
-    np.cumsum(np.where(with_type, 6 * n_faces - 11, 0), out=code_offsets[1:])
-    weinberg = np.zeros(int(code_offsets[-1]), np.int32)
-    symmetry = np.zeros(g, np.int32)
-    chirality = np.zeros(g, np.int8)
+    np.cumsum(np.where(computed, 6 * n_faces - 11, 0), out=code_offsets[1:])
+    result = _Types(
+        computed=computed,
+        code_offsets=code_offsets,
+        weinberg=np.zeros(int(code_offsets[-1]), np.int32),
+        symmetry=np.zeros(g, np.int32),
+        chirality=np.zeros(g, np.int8),
+    )
     if types:
         rotations = batch.neighbors
-        unoriented = np.flatnonzero(ok & ~consistent)
+        unoriented = np.flatnonzero(ok & ~out.consistent)
         if len(unoriented):
             rotations = batch.neighbors.copy()
             csr = (batch.face_offsets, batch.nbr_offsets, batch.neighbors)
@@ -324,10 +338,30 @@ def classify(
             ok,
             int(n_faces.max()) if g else 0,
             code_offsets,
-            weinberg,
-            symmetry,
-            chirality,
+            result.weinberg,
+            result.symmetry,
+            result.chirality,
         )
+    return result
+
+
+def _table(batch: GrainBatch, out: _Classified, types: _Types) -> pa.Table:
+    """The per-grain table of :func:`classify` from the kernels' outputs."""
+    from grainclass._kernels.columns import _code_strings, _compact, _p_vectors
+
+    g = len(batch)
+    n_faces = batch.n_faces
+    parsed, status, err, family = out.parsed, out.status, out.err, out.family
+    fundamental, n_trees, depth, belts = out.fundamental, out.n_trees, out.depth, out.belts
+    ok = status == codes.OK
+    truncations = n_faces - fundamental
+    stacked = family == codes.STACKED
+    has_trees = ok & ~stacked
+    is_flag = (family == codes.FLAG) & (truncations == 0)
+    p_offsets, p_counts, triangles = _p_vectors(batch.face_offsets, batch.nbr_offsets, ok)
+    trees = string_array(*_compact(out.tree_offsets, out.tree_bytes, out.tree_length), has_trees)
+    split_k = belts[:, 0]
+    with_type = types.computed
     volume, area = batch.volume, batch.area
     isoperimetric = None
     if volume is not None and area is not None:
@@ -373,9 +407,11 @@ def classify(
         schema.SPLIT_M: _nullable(n_faces - 4 - split_k, is_flag, pa.int32()),
         schema.BELTS4: _nullable(belts[:, 1], is_flag, pa.int32()),
         schema.PENALTY: _nullable(n_faces * belts[:, 2], is_flag, pa.int64()),
-        schema.WEINBERG: string_array(*_code_strings(weinberg, code_offsets, with_type), with_type),
-        schema.SYMMETRY: _nullable(symmetry, with_type, pa.int32()),
-        schema.CHIRALITY: _nullable(chirality, with_type, pa.int8()),
+        schema.WEINBERG: string_array(
+            *_code_strings(types.weinberg, types.code_offsets, with_type), with_type
+        ),
+        schema.SYMMETRY: _nullable(types.symmetry, with_type, pa.int32()),
+        schema.CHIRALITY: _nullable(types.chirality, with_type, pa.int8()),
         schema.VOLUME: _float_column(volume, g),
         schema.AREA: _float_column(area, g),
         schema.ISOPERIMETRIC: _float_column(isoperimetric, g),

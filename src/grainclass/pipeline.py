@@ -73,8 +73,12 @@ def classified_tables(
     types: bool = True,
 ) -> Iterator[pa.Table]:
     """Per-grain tables for every batch of the inputs, in input order."""
+    from grainclass.parallel import get_jobs
+    from grainclass.warmup import compiling_from_both_ends
+
     batches = prefetch(read_dataset(paths, format, chunk_size, triple_edges))
-    yield from map_ordered(lambda batch: classify(batch, types=types), batches)
+    with compiling_from_both_ends(get_jobs(), types):
+        yield from map_ordered(lambda batch: classify(batch, types=types), batches)
 
 
 def is_parquet(path: str) -> bool:

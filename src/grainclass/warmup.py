@@ -1,0 +1,86 @@
+"""A cold kernel cache is filled from both ends at once.
+
+numba compiles one kernel at a time in a process, so the first ``classify`` after installation
+(or after an upgrade of numba) spends most of its time compiling, on one core. When the cache
+is cold and more than one job may run, a helper process classifies a cube with the kernels
+called in the opposite order (the Weinberg walk first, the classification last) while the main
+process starts with the classification: each loads from numba's cache what the other has
+already written there, and the two meet in the middle.
+"""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+from collections.abc import Iterator
+from contextlib import contextmanager
+
+CUBE = [[1, 2, 3, 4], [0, 4, 5, 2], [0, 1, 5, 3], [0, 2, 5, 4], [0, 3, 5, 1], [1, 4, 3, 2]]
+_STOP_WAIT = 2.0  # seconds the helper may take to finish once the main process is done
+
+
+def cold(kernel: object) -> bool:
+    """True if numba's cache holds nothing usable for ``kernel`` (no index, or one written
+    for another version of its source)."""
+    try:
+        return not kernel._cache._cache_file._load_index()  # type: ignore[attr-defined]
+    except Exception:  # no JIT (NUMBA_DISABLE_JIT), or numba's cache internals moved
+        return False
+
+
+@contextmanager
+def compiling_from_both_ends(jobs: int, types: bool) -> Iterator[None]:
+    """Run the body with a helper compiling from the other end when the cache is cold and
+    ``jobs`` > 1. Once the body is done the helper has little left (what it would compile next
+    is in the cache) and gets a moment to finish; if the body fails it is stopped at once."""
+    from grainclass._kernels.batch import _classify_batch
+    from grainclass._kernels.weinberg import _weinberg_batch
+
+    helper = None
+    if jobs > 1 and cold(_weinberg_batch if types else _classify_batch):
+        helper = subprocess.Popen(
+            [sys.executable, "-m", "grainclass.warmup", *([] if types else ["--no-types"])],
+            stdin=subprocess.DEVNULL,
+            stdout=subprocess.DEVNULL,
+            stderr=subprocess.DEVNULL,
+        )
+    try:
+        yield
+    except BaseException:
+        if helper is not None:
+            helper.kill()
+            helper.wait()
+        raise
+    if helper is not None:
+        try:
+            helper.wait(timeout=_STOP_WAIT)
+        except subprocess.TimeoutExpired:
+            helper.kill()
+            helper.wait()
+
+
+def fill_cache(types: bool) -> None:
+    """The helper's work: the kernels ``classify`` calls last first, then ``classify`` itself
+    (which by then finds most of them in the cache)."""
+    from grainclass.batch import GrainBatch
+    from grainclass.classification import classify
+
+    batch = GrainBatch.from_lists([CUBE])
+    _last_kernels_first(batch, types)
+    classify(batch, types=types)
+
+
+def _last_kernels_first(batch: object, types: bool) -> None:
+    """The Weinberg walk and the table's column kernels, on made-up outputs of the
+    classification (every grain ok): the calls and argument types of ``classify`` itself."""
+    from grainclass._kernels import codes
+    from grainclass.classification import _Classified, _table, _types
+
+    out = _Classified.empty(batch, strings=True)
+    out.status[:] = codes.OK
+    out.consistent[:] = True
+    _table(batch, out, _types(batch, out, types))
+
+
+if __name__ == "__main__":
+    fill_cache(types="--no-types" not in sys.argv[1:])

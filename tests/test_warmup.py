@@ -1,0 +1,94 @@
+"""The helper that fills a cold kernel cache from the other end must compile exactly what
+``classify`` then asks for: a signature that differed would be compiled twice."""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+
+import pytest
+
+from grainclass.warmup import cold
+
+pytestmark = pytest.mark.skipif(
+    os.environ.get("NUMBA_DISABLE_JIT") == "1", reason="nothing is compiled without the JIT"
+)
+
+# Classify adjacency text read from a file, as the command line does, recording what numba
+# compiles in this process (whatever is not in the cache).
+RECORD = """
+import json, sys
+from numba.core import event
+recorder = event.RecordingListener()
+event.register("numba:compile", recorder)
+from grainclass.classification import classify
+from grainclass.readers import read_dataset
+for batch in read_dataset([sys.argv[1]]):
+    classify(batch)
+names = {e.data["dispatcher"].py_func.__name__ for _, e in recorder.buffer if e.is_start}
+print(json.dumps(sorted(names)))
+"""
+FIRST = ["_weinberg_batch", "_code_strings", "_p_vectors", "_compact", "_strings_from_codes"]
+LAST_FIRST = """
+from grainclass.batch import GrainBatch
+from grainclass.warmup import CUBE, _last_kernels_first
+_last_kernels_first(GrainBatch.from_lists([CUBE]), types=True)
+"""
+
+
+def test_helper_compiles_the_kernels_classify_calls_last_with_its_signatures(tmp_path):
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path / "cache"))
+    text = tmp_path / "grains.txt"
+    # A truncated cube (a truncation tree) and the cube (a 4-belt), both with their types.
+    text.write_text(
+        "t 1 2 3 4;0 4 5 2 6;0 1 5 3;0 2 5 4;0 3 5 1;1 4 3 2 6;1 5 4\n"
+        "cube 1 2 3 4;0 4 5 2;0 1 5 3;0 2 5 4;0 3 5 1;1 4 3 2\n"
+    )
+    subprocess.run([sys.executable, "-c", LAST_FIRST], env=env, check=True)
+    done = subprocess.run(
+        [sys.executable, "-c", RECORD, str(text)], env=env, check=True, capture_output=True
+    )
+    compiled = json.loads(done.stdout)
+    assert not set(FIRST) & set(compiled), compiled
+    assert "_classify_batch" in compiled  # what the helper leaves to the end is compiled here
+
+
+def test_a_kernel_never_compiled_is_cold_and_a_cached_one_is_not(tmp_path):
+    probe = (
+        "import sys; from grainclass.warmup import cold; "
+        "from grainclass._kernels.groups import _group_keys; import numpy as np; "
+        "print(cold(_group_keys)); _group_keys(np.zeros(3, np.int64)); print(cold(_group_keys))"
+    )
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path / "cache"))
+    out = subprocess.run([sys.executable, "-c", probe], env=env, check=True, capture_output=True)
+    assert out.stdout.split() == [b"True", b"False"]
+    assert cold(object()) is False  # not a numba kernel: nothing to warm
+
+
+def test_helper_runs_only_on_a_cold_cache_with_jobs_and_stops_when_the_run_fails(monkeypatch):
+    import grainclass.warmup as warmup
+    from grainclass.batch import GrainBatch
+    from grainclass.classification import classify
+
+    classify(GrainBatch.from_lists([warmup.CUBE]))  # the cache is warm from here on
+    started: list[subprocess.Popen] = []
+    popen = subprocess.Popen
+
+    def recording_popen(*args, **kwargs):
+        started.append(popen(*args, **kwargs))
+        return started[-1]
+
+    monkeypatch.setattr(warmup.subprocess, "Popen", recording_popen)
+    with warmup.compiling_from_both_ends(jobs=2, types=True):
+        pass
+    assert started == []  # a warm cache
+    monkeypatch.setattr(warmup, "cold", lambda kernel: True)
+    with warmup.compiling_from_both_ends(jobs=1, types=True):
+        pass
+    assert started == []  # one job: no second process
+    with pytest.raises(KeyError), warmup.compiling_from_both_ends(jobs=2, types=True):
+        raise KeyError("bad input")
+    assert len(started) == 1
+    assert started[0].returncode == -9  # killed at once, and reaped
