@@ -14,7 +14,7 @@ import pyarrow as pa
 import pyarrow.parquet as pq
 
 from grainclass.atomic import atomic_output
-from grainclass.schema import GRAIN_SCHEMA
+from grainclass.schema import GRAIN_ID, GRAIN_SCHEMA
 
 
 class GrainTableWriter:
@@ -62,7 +62,12 @@ class GrainTableWriter:
 
     def _open(self, schema: pa.Schema) -> None:
         self._schema = schema
-        self._writer = pq.ParquetWriter(self._sink, schema, compression="zstd")
+        # Grain ids are unique: a dictionary for them only grows until Parquet gives it up,
+        # which cost 40% of the writing (all other columns keep theirs).
+        dictionary = [name for name in schema.names if name != GRAIN_ID]
+        self._writer = pq.ParquetWriter(
+            self._sink, schema, compression="zstd", use_dictionary=dictionary
+        )
 
     def __exit__(
         self,
