@@ -19,25 +19,28 @@ from grainclass._kernels.reduce import _has_empty_triangle, _reduce
 from grainclass._kernels.small import (
     _four_belts_small,
     _has_empty_triangle_small,
-    _parents_small,
     _reduce_small,
     _validate_record,
     _validate_small,
 )
-from grainclass._kernels.trees import _forest_scratch, _forest_string, _parents_from_links
+from grainclass._kernels.trees import (
+    _forest_scratch,
+    _forest_string,
+    _forest_string_small,
+    _parents_from_links,
+)
 from grainclass._kernels.validate import _validate
 from grainclass._numba import njit
 
 
 @njit
 def _work():
-    """Scratch for :func:`_classify_grain`, allocated once per kernel call."""
+    """Scratch for :func:`_classify_small`, allocated once per kernel call."""
     return (
         np.empty(MAX_BITSET_FACES, np.uint64),  # adjacency bitsets
         np.empty(MAX_BITSET_FACES * MAX_BITSET_FACES, np.uint8),  # next neighbour around a face
         np.empty(MAX_BITSET_FACES, np.uint64),  # link of each removed face
         np.empty(MAX_BITSET_FACES, np.int32),  # round it was removed in
-        np.empty(MAX_BITSET_FACES, np.int32),  # its parent in the truncation forest
         _forest_scratch(MAX_BITSET_FACES),
     )
 
@@ -100,7 +103,7 @@ def _classify_small(
     tree_length,
 ):
     """Classify grain g, validated by the fast path (its bitsets are in ``work``)."""
-    adj, _, link, removed_round, parent, scratch = work
+    adj, _, link, removed_round, scratch = work
     alive = _reduce_small(n, adj, removed_round, link)
     fundamental[g] = popcount(alive)
     if fundamental[g] == 4:
@@ -108,9 +111,8 @@ def _classify_small(
     elif fundamental[g] < n:
         family[g] = SC if _has_empty_triangle_small(adj, alive) else FLAG
         if strings:
-            _parents_small(n, alive, removed_round, link, parent)
-            trees_count[g], depth[g], tree_length[g] = _forest_string(
-                n, removed_round, parent, tree_bytes, tree_at, scratch
+            trees_count[g], depth[g], tree_length[g] = _forest_string_small(
+                n, alive, removed_round, link, tree_bytes, tree_at, scratch
             )
         else:
             trees_count[g] = _roots_small(alive, n, link)

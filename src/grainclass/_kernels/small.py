@@ -168,22 +168,6 @@ def _has_empty_triangle_small(adj, alive):
 
 
 @njit
-def _parents_small(n, alive, removed_round, link, parent):
-    """Parent in the truncation forest: the linked removed vertex that went first (``trees.py``)."""
-    removed = full(n) & ~alive
-    for v in range(n):
-        parent[v] = -1
-        if alive & bit(v):
-            continue
-        m = link[v] & removed
-        while m:
-            x = lowest(m)
-            m &= m - ONE
-            if parent[v] < 0 or removed_round[x] < removed_round[parent[v]]:
-                parent[v] = x
-
-
-@njit
 def _four_belts_small(n, adj, out):
     """As ``belts._four_belts``: chordless 4-cycles a-b-c-d, each found once from its smallest
     vertex a; writes ``out = (split_k, belts, sum of k * (n - k - 4))``.

@@ -11,12 +11,13 @@ forest is its trees sorted by (length, string) joined by ``+``.
 
 import numpy as np
 
+from grainclass._kernels.bits import ONE, ZERO, bit, full, lowest
 from grainclass._numba import njit
 
 OPEN, CLOSE, PLUS = 40, 41, 43  # "(", ")", "+"
 
 
-@njit
+@njit(inline="always")
 def _copy(source, at, count, target, to):
     """Copy ``count`` bytes from ``source[at:]`` to ``target[to:]``; returns the end in target.
 
@@ -28,7 +29,7 @@ def _copy(source, at, count, target, to):
     return to + count
 
 
-@njit
+@njit(inline="always")
 def _less(buf, a_start, a_len, b_start, b_len):
     """Byte-wise lexicographic ``buf[a] < buf[b]`` for two slices of one buffer."""
     for i in range(min(a_len, b_len)):
@@ -37,7 +38,7 @@ def _less(buf, a_start, a_len, b_start, b_len):
     return a_len < b_len
 
 
-@njit
+@njit(inline="always")
 def _sort_slices(items, count, buf, start, length, by_length_first):
     """Insertion sort of node ids ``items[:count]`` by their strings in ``buf``."""
     for i in range(1, count):
@@ -71,16 +72,68 @@ def _parents_from_links(n, alive, removed_round, link, parent):
 
 @njit
 def _forest_scratch(n):
-    """Scratch arrays for :func:`_forest_string` on up to n vertices."""
+    """Scratch arrays for :func:`_forest_string` and :func:`_forest_string_small` on up to n
+    vertices."""
     return (
-        np.empty(n + 1, np.int32),  # child offsets
-        np.empty(max(n, 1), np.int32),  # children
+        np.empty(max(n, 1), np.int32),  # first child of each vertex (-1: a leaf)
+        np.empty(max(n, 1), np.int32),  # next sibling
+        np.empty(max(n, 1), np.int32),  # the children of one vertex, to sort
         np.empty(n * (n + 1) + 1, np.uint8),  # strings of the subtrees
-        np.empty(n, np.int64),  # start of each subtree's string
-        np.empty(n, np.int64),  # its length
-        np.empty(n, np.int32),  # subtree height
+        np.empty(max(n, 1), np.int64),  # start of each subtree's string
+        np.empty(max(n, 1), np.int64),  # its length
+        np.empty(max(n, 1), np.int32),  # subtree height
         np.empty(max(n, 1), np.int32),  # roots
+        np.empty(n + 1, np.uint64),  # removed vertices by round (bitset path)
     )
+
+
+@njit(inline="always")
+def _subtree(v, first_child, next_sibling, kids, buf, start, length, height, pos):
+    """Write the string of v's subtree at ``buf[pos:]`` (its children's strings are there
+    already); returns where it ends."""
+    start[v] = pos
+    c = first_child[v]
+    if c < 0:  # a leaf, most of them
+        buf[pos] = OPEN
+        buf[pos + 1] = CLOSE
+        length[v] = 2
+        height[v] = 1
+        return pos + 2
+    count = 0
+    tallest = 0
+    while c >= 0:
+        kids[count] = c
+        count += 1
+        tallest = max(tallest, height[c])
+        c = next_sibling[c]
+    _sort_slices(kids, count, buf, start, length, False)
+    buf[pos] = OPEN
+    pos += 1
+    for i in range(count):
+        pos = _copy(buf, start[kids[i]], length[kids[i]], buf, pos)
+    buf[pos] = CLOSE
+    pos += 1
+    length[v] = pos - start[v]
+    height[v] = tallest + 1
+    return pos
+
+
+@njit(inline="always")
+def _write_forest(roots, n_roots, buf, start, length, height, out, at):
+    """The trees of ``roots[:n_roots]`` sorted by (length, string) and joined by ``+`` into
+    ``out`` from ``at``; returns ``(n_trees, depth, length)``."""
+    depth = 0
+    for r in range(n_roots):
+        depth = max(depth, height[roots[r]])
+    _sort_slices(roots, n_roots, buf, start, length, True)
+    written = at
+    for r in range(n_roots):
+        if r > 0:
+            out[written] = PLUS
+            written += 1
+        v = roots[r]
+        written = _copy(buf, start[v], length[v], out, written)
+    return n_roots, depth, written - at
 
 
 @njit
@@ -92,56 +145,71 @@ def _forest_string(n, removed_round, parent, out, at, scratch):
     comes from :func:`_forest_scratch`. Returns ``(n_trees, depth, length)``: depth is the number
     of vertices on a longest root path. O(t^2) for t truncations.
     """
-    child_off, children, buf, start, length, height, roots = scratch
+    first_child, next_sibling, kids, buf, start, length, height, roots, _ = scratch
+    for v in range(n):
+        first_child[v] = -1
     last_round = 0
-    for v in range(n + 1):
-        child_off[v] = 0
+    n_roots = 0
     for v in range(n):
+        if removed_round[v] == 0:
+            continue
         last_round = max(last_round, removed_round[v])
-        if removed_round[v] > 0 and parent[v] >= 0:
-            child_off[parent[v] + 1] += 1
-    for v in range(n):
-        child_off[v + 1] += child_off[v]
-    for v in range(n):  # place children, advancing each offset to the next one's value ...
-        if removed_round[v] > 0 and parent[v] >= 0:
-            children[child_off[parent[v]]] = v
-            child_off[parent[v]] += 1
-    for v in range(n - 1, -1, -1):  # ... and shift them back
-        child_off[v + 1] = child_off[v]
-    child_off[0] = 0
+        if parent[v] >= 0:
+            next_sibling[v] = first_child[parent[v]]
+            first_child[parent[v]] = v
+        else:
+            roots[n_roots] = v
+            n_roots += 1
     # Children are removed in earlier rounds than their parent: build strings round by round.
     pos = 0
     for rnd in range(1, last_round + 1):
         for v in range(n):
-            if removed_round[v] != rnd:
-                continue
-            first, count = child_off[v], child_off[v + 1] - child_off[v]
-            kids = children[first : first + count]
-            _sort_slices(kids, count, buf, start, length, False)
-            start[v] = pos
-            buf[pos] = OPEN
-            pos += 1
-            tallest = 0
-            for c in kids:
-                pos = _copy(buf, start[c], length[c], buf, pos)
-                tallest = max(tallest, height[c])
-            buf[pos] = CLOSE
-            pos += 1
-            length[v] = pos - start[v]
-            height[v] = tallest + 1
+            if removed_round[v] == rnd:
+                pos = _subtree(v, first_child, next_sibling, kids, buf, start, length, height, pos)
+    return _write_forest(roots, n_roots, buf, start, length, height, out, at)
+
+
+@njit
+def _forest_string_small(n, alive, removed_round, link, out, at, scratch):
+    """:func:`_forest_string` for a grain on bitsets (``small.py``): ``alive`` is the
+    fundamental vertex set, ``link[v]`` the bitset of v's neighbours when it went. Parents come
+    from the links (module docstring) and only removed vertices are visited."""
+    first_child, next_sibling, kids, buf, start, length, height, roots, by_round = scratch
+    removed = full(n) & ~alive
+    last_round = 0
+    m = removed
+    while m:
+        v = lowest(m)
+        m &= m - ONE
+        first_child[v] = -1
+        last_round = max(last_round, removed_round[v])
+    for rnd in range(1, last_round + 1):
+        by_round[rnd] = ZERO
     n_roots = 0
-    depth = 0
-    for v in range(n):
-        if removed_round[v] > 0 and parent[v] < 0:
+    m = removed
+    while m:
+        v = lowest(m)
+        m &= m - ONE
+        by_round[removed_round[v]] |= bit(v)
+        linked = link[v] & removed
+        if linked == ZERO:
             roots[n_roots] = v
             n_roots += 1
-            depth = max(depth, height[v])
-    _sort_slices(roots, n_roots, buf, start, length, True)
-    written = at
-    for r in range(n_roots):
-        if r > 0:
-            out[written] = PLUS
-            written += 1
-        v = roots[r]
-        written = _copy(buf, start[v], length[v], out, written)
-    return n_roots, depth, written - at
+            continue
+        p = lowest(linked)
+        linked &= linked - ONE
+        while linked:
+            x = lowest(linked)
+            linked &= linked - ONE
+            if removed_round[x] < removed_round[p]:
+                p = x
+        next_sibling[v] = first_child[p]
+        first_child[p] = v
+    pos = 0
+    for rnd in range(1, last_round + 1):
+        m = by_round[rnd]
+        while m:
+            v = lowest(m)
+            m &= m - ONE
+            pos = _subtree(v, first_child, next_sibling, kids, buf, start, length, height, pos)
+    return _write_forest(roots, n_roots, buf, start, length, height, out, at)
