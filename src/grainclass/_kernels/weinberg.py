@@ -20,61 +20,59 @@ from grainclass._numba import njit
 
 
 @njit
-def _corners(n, off, rot, pos, corner, corner_nbr, corner_back, left_face):
+def _corners(n, off, rot, pos, corner, least, corner_nbr, corner_back, left_face):
     """The grain's edge graph: ``corner_nbr[T]`` = the 3 corners next to corner T, in
     counter-clockwise order, ``corner_back[T, k]`` the index of the edge back from
     ``corner_nbr[T, k]`` to T, and ``left_face[T, k]`` the size of the grain face on the left of
     the edge T -> corner_nbr[T, k] (the face on its right is the left face of edge k + 1).
     Corners are the dual's triangles; returns their number.
 
-    ``rot`` holds the counter-clockwise rotation lists (``nb``'s layout); ``pos`` (n x n) and
-    ``corner`` (one per dart) are scratch.
+    ``rot`` holds the counter-clockwise rotation lists (``nb``'s layout); ``pos`` (n x n),
+    ``corner`` (one per dart) and ``least`` (one more than there are corners) are scratch.
+    Loops choose with selects where they can: which of a triangle's faces is least, or which
+    edge leads back, is data that no branch predictor guesses.
     """
     for v in range(n):
         for i in range(off[v], off[v + 1]):
             pos[v, rot[i]] = i - off[v]
-    # Loops over darts i of face v with x = rot[i] and y = rot[next] (no modulo: cheaper).
+    # Dart i of face v, with x = rot[i] and y = rot[next], is corner (v, x, y). Its id is made
+    # at the triangle's least face, which comes first in this loop; the other two darts copy
+    # it from there. ``least[t]`` is corner t's dart at its least face.
     count = 0
     for v in range(n):
         s, e = off[v], off[v + 1]
         for i in range(s, e):
             x = rot[i]
             y = rot[i + 1] if i + 1 < e else rot[s]
-            if v < x and v < y:
-                corner[i] = count
-                count += 1
-    for v in range(n):  # every other dart takes the id of its triangle's dart at the least face
+            least_here = (v < x) & (v < y)
+            source = off[x] + pos[x, y] if (x < v) & (x < y) else off[y] + pos[y, v]
+            copied = corner[source]  # read before it is set when least_here: not used then
+            corner[i] = count if least_here else copied
+            least[count] = i
+            count += least_here
+    v = 0
+    for t in range(count):  # corners in the order of their darts, face by face
+        i = least[t]
+        while i >= off[v + 1]:
+            v += 1
         s, e = off[v], off[v + 1]
-        for i in range(s, e):
-            x = rot[i]
-            y = rot[i + 1] if i + 1 < e else rot[s]
-            if x < v and x < y:
-                corner[i] = corner[off[x] + pos[x, y]]
-            elif y < v and y < x:
-                corner[i] = corner[off[y] + pos[y, v]]
-    for v in range(n):
-        s, e = off[v], off[v + 1]
-        for i in range(s, e):
-            x = rot[i]
-            y = rot[i + 1] if i + 1 < e else rot[s]
-            sx, ex = off[x], off[x + 1]
-            before_y = sx + pos[x, y] - 1
-            t = corner[i]
-            # Corner t is the counter-clockwise triangle (v, x, y); leaving it across its side
-            # a -> b (in that order), face a lies on the left and face b on the right.
-            corner_nbr[t, 0] = corner[i - 1 if i > s else e - 1]  # across side v-x
-            corner_nbr[t, 1] = corner[before_y if before_y >= sx else ex - 1]  # across x-y
-            corner_nbr[t, 2] = corner[i + 1 if i + 1 < e else s]  # across side y-v
-            left_face[t, 0] = e - s
-            left_face[t, 1] = ex - sx
-            left_face[t, 2] = off[y + 1] - off[y]
+        x = rot[i]
+        y = rot[i + 1] if i + 1 < e else rot[s]
+        sx, ex = off[x], off[x + 1]
+        before_y = sx + pos[x, y] - 1
+        # Corner t is the counter-clockwise triangle (v, x, y); leaving it across its side
+        # a -> b (in that order), face a lies on the left and face b on the right.
+        corner_nbr[t, 0] = corner[i - 1 if i > s else e - 1]  # across side v-x
+        corner_nbr[t, 1] = corner[before_y if before_y >= sx else ex - 1]  # across x-y
+        corner_nbr[t, 2] = corner[i + 1 if i + 1 < e else s]  # across side y-v
+        left_face[t, 0] = e - s
+        left_face[t, 1] = ex - sx
+        left_face[t, 2] = off[y + 1] - off[y]
     for t in range(count):  # once per edge here, not once per step of every walk
         for k in range(3):
             nxt = corner_nbr[t, k]
-            back = 0
-            while corner_nbr[nxt, back] != t:
-                back += 1
-            corner_back[t, k] = back
+            # The edge graph is simple: exactly one of nxt's three edges leads back to t.
+            corner_back[t, k] = (corner_nbr[nxt, 1] == t) + 2 * (corner_nbr[nxt, 2] == t)
     return count
 
 
@@ -226,6 +224,7 @@ def _weinberg_batch(
     darts = max(6 * max_faces - 12, 1)
     pos = np.empty((max_faces, max_faces), np.int64)
     corner = np.empty(darts, np.int64)
+    least = np.empty(t_max + 1, np.int64)
     corner_nbr = np.empty((t_max, 3), np.int64)
     corner_back = np.empty((t_max, 3), np.int64)
     left_face = np.empty((t_max, 3), np.int64)
@@ -240,7 +239,7 @@ def _weinberg_batch(
         n = face_offsets[g + 1] - f0
         off = nbr_offsets[f0 : f0 + n + 1] - nbr_offsets[f0]
         rot = rotations[nbr_offsets[f0] : nbr_offsets[f0 + n]]
-        t = _corners(n, off, rot, pos, corner, corner_nbr, corner_back, left_face)
+        t = _corners(n, off, rot, pos, corner, least, corner_nbr, corner_back, left_face)
         for c in range(t):
             stamp[c] = 0
             used[c, 0] = used[c, 1] = used[c, 2] = 0

@@ -74,9 +74,12 @@ def read_planar_code(
     buffers = _BufferPool()
     buffer = np.frombuffer(head, np.uint8)  # bytes not yet parsed: buffer[pos:]
     at_end, pos = False, 0
+    last_chunk = BLOCK_BYTES  # bytes the last batch took
     record = 1
     while True:
-        if not at_end and len(buffer) - pos < BLOCK_BYTES:
+        # Read on when the rest may not hold a batch: with small batches, the bytes copied to
+        # the new buffer stay small too.
+        if not at_end and len(buffer) - pos < min(last_chunk, BLOCK_BYTES):
             buffer, at_end = buffers.refill(stream, buffer[pos:])
             pos = 0
         buf = buffer[pos:]
@@ -111,6 +114,7 @@ def read_planar_code(
             )
         record += records
         pos += consumed
+        last_chunk = consumed
 
 
 class _BufferPool:
