@@ -18,6 +18,8 @@ import numpy as np
 from grainclass._kernels.validate import _rotation
 from grainclass._numba import njit
 
+PREFIX = 16  # entries over which all candidate walks are compared first (see _weinberg)
+
 
 @njit
 def _corners(n, off, rot, pos, corner, least, corner_nbr, corner_back, left_face):
@@ -85,14 +87,14 @@ def _turned(k, turn):
 
 @njit
 def _walk(
-    corner_nbr, corner_back, t, start, first, turn, best, state, stamp, gen, label, used, code
+    corner_nbr, corner_back, length, start, first, turn, best, state, stamp, gen, label, used, code
 ):
-    """One Weinberg walk from ``start`` along its edge ``first``, turning by ``turn`` (-1 right,
-    +1 left, in counter-clockwise index steps). Compares with ``best`` as it goes: returns -1 if
-    the code is smaller (``code`` then holds it), 0 if equal, +1 as soon as it is larger.
-    ``stamp``/``used`` hold ``gen`` for what this walk has seen, so nothing is reset per walk.
+    """The first ``length`` entries of the Weinberg walk from ``start`` along its edge
+    ``first``, turning by ``turn`` (-1 right, +1 left, in counter-clockwise index steps).
+    Compares with ``best`` as it goes: returns -1 if the code is smaller (``code`` then holds
+    it), 0 if equal, +1 as soon as it is larger. ``stamp``/``used`` hold ``gen`` for what this
+    walk has seen, so nothing is reset per walk.
     """
-    length = 3 * t + 1  # 2E + 1 with E = 3t/2
     cmp = state
     stamp[start] = gen
     label[start] = 1
@@ -125,21 +127,25 @@ def _walk(
 
 
 @njit
-def _weinberg(corner_nbr, corner_back, left_face, t, best, stamp, label, used, code):
-    """Canonical code into ``best``; returns (symmetry, chirality).
+def _weinberg(corner_nbr, corner_back, left_face, t, best, stamp, label, used, code, tied):
+    """Canonical code into ``best``; returns (symmetry, chirality). ``tied`` (6t entries) is
+    scratch.
 
     A walk first goes round the face on its turning side and writes 1 again after as many
     steps as that face has sides, so only edges along faces of the smallest size can start the
-    smallest code.
+    smallest code. Of those, most lose within a dozen steps, but a walk that is ahead of the
+    best so far runs to the end: so the candidates are first compared over their first
+    PREFIX entries only, and only the ones tied with the smallest prefix are walked in full.
     """
-    length = 3 * t + 1
+    length = 3 * t + 1  # 2E + 1 with E = 3t/2
     smallest = left_face[0, 0]
     for c in range(t):
         for k in range(3):
             smallest = min(smallest, left_face[c, k])
-    best[0] = -1  # nothing yet: the first complete walk wins
-    symmetry = right = left = 0
     gen = 1  # the caller zeroed stamp and used
+    short = min(PREFIX, length)
+    best[0] = -1  # nothing yet: the first walk wins
+    n_tied = 0
     for start in range(t):
         for first in range(3):
             for turn in (-1, 1):
@@ -147,14 +153,13 @@ def _weinberg(corner_nbr, corner_back, left_face, t, best, stamp, label, used, c
                 # right of edge ``first`` (the left face of the next edge); turning left, the
                 # face left of it.
                 side = (first + 1) % 3 if turn < 0 else first
-                face = left_face[start, side]
-                if face != smallest:
+                if left_face[start, side] != smallest:
                     continue
                 state = -1 if best[0] < 0 else 0
                 result = _walk(
                     corner_nbr,
                     corner_back,
-                    t,
+                    short,
                     start,
                     first,
                     turn,
@@ -168,18 +173,47 @@ def _weinberg(corner_nbr, corner_back, left_face, t, best, stamp, label, used, c
                 )
                 gen += 1
                 if result < 0:
-                    for i in range(length):
+                    for i in range(short):
                         best[i] = code[i]
-                    symmetry = 1
-                    right, left = (1, 0) if turn < 0 else (0, 1)
-                elif result == 0:
-                    symmetry += 1
-                    if turn < 0:
-                        right += 1
-                    else:
-                        left += 1
+                    n_tied = 0
+                if result <= 0:
+                    tied[n_tied] = 6 * start + 2 * first + (turn > 0)
+                    n_tied += 1
+    if short < length:  # the ties walked in full, the same way
+        best[0] = -1
+        for j in range(n_tied):  # kept ones are moved down: n_tied never passes j
+            start, first, turn = tied[j] // 6, tied[j] % 6 // 2, 1 if tied[j] & 1 else -1
+            state = -1 if best[0] < 0 else 0
+            result = _walk(
+                corner_nbr,
+                corner_back,
+                length,
+                start,
+                first,
+                turn,
+                best,
+                state,
+                stamp,
+                gen,
+                label,
+                used,
+                code,
+            )
+            gen += 1
+            if result < 0:
+                for i in range(length):
+                    best[i] = code[i]
+                n_tied = 0
+            if result <= 0:
+                tied[n_tied] = tied[j]
+                n_tied += 1
+    # The walks giving the smallest code: one per symmetry (reflections included).
+    right = 0
+    for j in range(n_tied):
+        right += (tied[j] & 1) == 0
+    left = n_tied - right
     chirality = 0 if right and left else (1 if right else -1)
-    return symmetry, chirality
+    return n_tied, chirality
 
 
 @njit
@@ -232,6 +266,7 @@ def _weinberg_batch(
     label = np.empty(t_max, np.int64)
     used = np.zeros((t_max, 3), np.int64)
     code = np.empty(3 * t_max + 1, np.int32)
+    tied = np.empty(6 * t_max, np.int64)
     for g in range(first, last):
         if not ok[g]:
             continue
@@ -245,5 +280,5 @@ def _weinberg_batch(
             used[c, 0] = used[c, 1] = used[c, 2] = 0
         best = codes[code_offsets[g] : code_offsets[g] + 3 * t + 1]
         symmetry[g], chirality[g] = _weinberg(
-            corner_nbr, corner_back, left_face, t, best, stamp, label, used, code
+            corner_nbr, corner_back, left_face, t, best, stamp, label, used, code, tied
         )
