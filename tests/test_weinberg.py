@@ -3,6 +3,7 @@ networkx automorphism counts."""
 
 from __future__ import annotations
 
+import numpy as np
 import pyarrow as pa
 import pytest
 from hypothesis import given, settings
@@ -102,3 +103,27 @@ def test_papers_grains_a_b_c(plantri_output):
     rows = [r for r in table.to_pylist() if r["class"] == "flag" and r["p_vector"] == [0, 4, 4, 2]]
     got = sorted((r["penalty"], r["symmetry"], r["split_k"]) for r in rows)
     assert got == [(280, 2, 2), (450, 2, 3), (540, 8, 3)]
+
+
+@given(
+    st.lists(
+        st.one_of(
+            st.none(), st.lists(st.integers(1, 12_345), min_size=1, max_size=12)
+        ),  # None: a grain that is not ok
+        max_size=8,
+    )
+)
+@settings(max_examples=200, deadline=None)
+def test_code_strings_are_written_as_python_writes_them(grains):
+    # Entries of 1 to 5 digits: below 1000 they are written by selects, above by a loop.
+    from grainclass._kernels.columns import _code_strings
+
+    ok = np.array([g is not None for g in grains], bool)
+    lengths = [len(g) if g is not None else 0 for g in grains]
+    code_offsets = np.concatenate([[0], np.cumsum(lengths)]).astype(np.int64)
+    codes = np.array([v for g in grains if g is not None for v in g], np.int32)
+    offsets, data = _code_strings(codes, code_offsets, ok)
+    written = [bytes(data[offsets[i] : offsets[i + 1]]).decode() for i in range(len(grains))]
+    expected = ["(" + ",".join(map(str, g)) + ")" if g is not None else "" for g in grains]
+    assert written == expected
+    assert len(data) == offsets[-1]
