@@ -128,7 +128,8 @@ def group_rows(columns: Sequence[np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
         for column, radix in zip(columns, radices, strict=True):
             keys *= radix
             keys += column
-        return _group_keys(keys)
+        with np.errstate(over="ignore"):  # the hash wraps modulo 2**64 (seen without the JIT)
+            return _group_keys(keys)
     rows = np.stack(columns, axis=1).astype(np.int64)
     _, first, inverse = np.unique(rows, axis=0, return_index=True, return_inverse=True)
     order = np.argsort(first)
