@@ -88,39 +88,23 @@ def _roots_small(alive, n, link):
 
 
 @njit(inline="always")
-def _classify_small(
-    g,
-    n,
-    strings,
-    work,
-    family,
-    fundamental,
-    trees_count,
-    depth,
-    belts,
-    tree_at,
-    tree_bytes,
-    tree_length,
-):
-    """Classify grain g, validated by the fast path (its bitsets are in ``work``)."""
-    adj, _, link, removed_round, scratch = work
+def _classify_small(g, n, work, family, fundamental, belts):
+    """Classify grain g, validated by the fast path (its bitsets are in ``work``); returns the
+    fundamental faces as a bitset. The truncation trees are left to the caller: the census
+    only counts them, and a kernel that never writes their strings is compiled without them.
+    """
+    adj, _, link, removed_round, _ = work
     alive = _reduce_small(n, adj, removed_round, link)
     fundamental[g] = popcount(alive)
     if fundamental[g] == 4:
         family[g] = STACKED
-    elif fundamental[g] < n:
-        family[g] = SC if _has_empty_triangle_small(adj, alive) else FLAG
-        if strings:
-            trees_count[g], depth[g], tree_length[g] = _forest_string_small(
-                n, alive, removed_round, link, tree_bytes, tree_at, scratch
-            )
-        else:
-            trees_count[g] = _roots_small(alive, n, link)
     elif _has_empty_triangle_small(adj, alive):
         family[g] = SC
     else:
         family[g] = FLAG
-        _four_belts_small(n, adj, belts[g])
+        if fundamental[g] == n:
+            _four_belts_small(n, adj, belts[g])
+    return alive
 
 
 @njit
@@ -158,6 +142,7 @@ def _classify_batch(
     truncation forests are only counted (trees_count; depth and tree bytes are left alone).
     """
     work = _work()
+    _, _, link, removed_round, scratch = work
     for g in range(first, last):
         family[g] = -1
         depth[g] = 0
@@ -170,20 +155,14 @@ def _classify_batch(
         if n <= max_small and _validate_small(n, nbr_offsets, neighbors, f0, work[0], work[1]):
             status[g] = OK
             consistent[g] = True
-            _classify_small(
-                g,
-                n,
-                strings,
-                work,
-                family,
-                fundamental,
-                trees_count,
-                depth,
-                belts,
-                tree_offsets[g] if strings else 0,
-                tree_bytes,
-                tree_length,
-            )
+            alive = _classify_small(g, n, work, family, fundamental, belts)
+            if 4 < fundamental[g] < n:
+                if strings:
+                    trees_count[g], depth[g], tree_length[g] = _forest_string_small(
+                        n, alive, removed_round, link, tree_bytes, tree_offsets[g], scratch
+                    )
+                else:
+                    trees_count[g] = _roots_small(alive, n, link)
         else:
             status[g] = PENDING
 
@@ -251,9 +230,7 @@ def _classify_records(
     on CSR arrays.
     """
     work = _work()
-    no_trees = np.zeros(1, np.int32)
-    no_bytes = np.zeros(0, np.uint8)
-    no_lengths = np.zeros(1, np.int64)
+    links = work[2]
     for r in range(first, last):
         p = starts[r]
         wide = buf[p] == 0
@@ -273,19 +250,8 @@ def _classify_records(
             for v in range(n):
                 cubic += popcount(work[0][v]) == 3
             triangles[r] = cubic
-            _classify_small(
-                r,
-                n,
-                False,
-                work,
-                family,
-                fundamental,
-                trees_count,
-                no_trees,
-                belts,
-                0,
-                no_bytes,
-                no_lengths,
-            )
+            alive = _classify_small(r, n, work, family, fundamental, belts)
+            if 4 < fundamental[r] < n:
+                trees_count[r] = _roots_small(alive, n, links)
         else:
             status[r] = PENDING
