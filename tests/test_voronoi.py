@@ -114,6 +114,27 @@ def test_unreadable_voro_line_is_an_invalid_row(tmp_path):
     assert rows[1]["error"].startswith(f"{path}:2: cannot read this cell")
 
 
+def test_unreadable_loops_are_invalid_rows_and_the_others_are_kept(tmp_path):
+    tetra = "(0,1,2) (0,2,3) (0,3,1) (1,3,2)"
+    voro = tmp_path / "cells.voro"
+    voro.write_text(f"1 0.5 {tetra}\n2 0.5 (0,1,x) (0,2,3)\n3 0.5 () {tetra}\n4 0.5 {tetra}\n")
+    rows = classify(next(read_dataset(str(voro)))).to_pylist()
+    assert [r["status"] for r in rows] == ["ok", "invalid", "invalid", "ok"]
+    assert [r["grain_id"] for r in rows] == ["1", "2", "3", "4"]
+    assert (
+        rows[1]["error"] == f"{voro}:2: cannot read this cell: expected id [volume [area]] "
+        "(loop) (loop) ..."
+    )
+    assert rows[2]["error"].startswith(f"{voro}:3: cannot read this cell")
+    loops = tmp_path / "cells.loops"
+    loops.write_text("a\t0 1 2;0 2 3;0 3 1;1 3 2\nb\t0 1 -2;0 2 3\nc\t0 1 2;;0 3 1\n")
+    rows = classify(next(read_dataset(str(loops), format="loops"))).to_pylist()
+    assert [r["status"] for r in rows] == ["ok", "invalid", "invalid"]
+    assert rows[1]["error"].endswith(
+        "cannot read the loops: expected corner numbers, loops split by ';'"
+    )
+
+
 def test_boundary_grains_are_left_out_of_summaries_unless_asked(tmp_path):
     cube = "1 2 3 4;0 4 5 2;0 1 5 3;0 2 5 4;0 3 5 1;1 4 3 2"
     path = tmp_path / "cut.txt"

@@ -41,86 +41,157 @@ def batch_from_loops(
     >>> batch.neighbors[: batch.nbr_offsets[1]].tolist()  # face 0's neighbours
     [4, 3, 2, 1]
     """
-    from grainclass._kernels.loops import OPEN, _adjacency_from_loops
-
-    ids, locations, volumes, areas, errors = [], [], [], [], {}
+    rows = _Rows(source, location_kind)
     face_counts, loop_lengths, corners = [], [], []
-    for k, (grain_id, location, loops, volume, area, error) in enumerate(grains):
-        ids.append(grain_id)
-        locations.append(location)
-        volumes.append(volume)
-        areas.append(area)
-        if error is not None:
-            errors[k] = error
+    for grain_id, location, loops, volume, area, error in grains:
+        rows.add(grain_id, location, volume, area, error)
         if error is None and loops is not None:
             face_counts.append(len(loops))
             loop_lengths.extend(len(loop) for loop in loops)
             corners.extend(itertools.chain.from_iterable(loops))
         else:
             face_counts.append(0)
-    face_offsets = offsets_from_counts(face_counts)
-    loop_offsets = offsets_from_counts(loop_lengths)
-    nbr_offsets = np.zeros(len(loop_lengths) + 1, np.int64)
-    neighbors = np.empty(len(corners), np.int32)
-    flags = np.zeros(len(ids), np.int8)
-    bad = np.zeros((len(ids), 3), np.int64)
-    _adjacency_from_loops(
-        face_offsets,
-        loop_offsets,
+    return rows.batch(
+        np.asarray(face_counts, np.int64),
+        offsets_from_counts(loop_lengths),
         np.asarray(corners, np.int64),
-        nbr_offsets,
-        neighbors,
-        flags,
-        bad,
+        boundary,
     )
-    neighbors = neighbors[: nbr_offsets[-1]]
-    open_surface = (flags & OPEN) != 0
-    if open_surface.any():  # such grains keep their row, without faces
-        for g in np.flatnonzero(open_surface):
-            u, v, count = bad[g]
-            errors[int(g)] = f"not a closed surface: edge {u}-{v} lies on {count} face(s)"
-        counts = np.asarray(face_counts, np.int64)
-        kept_faces = np.flatnonzero(np.repeat(~open_surface, counts))
-        nbr_counts = np.diff(nbr_offsets)[kept_faces]
-        neighbors = neighbors[run_indices(nbr_offsets[:-1][kept_faces], nbr_counts)]
-        face_offsets = offsets_from_counts(np.where(open_surface, 0, counts))
-        nbr_offsets = offsets_from_counts(nbr_counts)
-    return GrainBatch(
-        source=source,
-        grain_id=ids,
-        location=np.asarray(locations, np.int64),
-        location_kind=location_kind,
-        face_offsets=face_offsets,
-        nbr_offsets=nbr_offsets,
-        neighbors=neighbors,
-        parse_errors=errors,
-        volume=np.asarray(volumes, np.float64),
-        area=np.asarray(areas, np.float64),
-        boundary=None if boundary is None else tri_state(boundary),
-    )
+
+
+class LoopText:
+    """Grains whose face loops are text, ``0 3 2 1;0 1 4;...``, gathered line by line and parsed
+    for a whole chunk at once by the adjacency text kernel (a loop of corner ids reads like a
+    face of neighbour ids), not number by number in Python.
+
+    ``unreadable`` is the message for loops the kernel cannot read (a character other than
+    digits, blanks and ``;``, or an empty loop).
+    """
+
+    def __init__(self, source: str, unreadable: str) -> None:
+        self._rows = _Rows(source, "line")
+        self._texts: list[bytes] = []
+        self.unreadable = unreadable
+
+    def __len__(self) -> int:
+        return len(self._texts)
+
+    def add(self, grain_id: str, line_no: int, loops: bytes, volume: float, area: float) -> None:
+        self._rows.add(grain_id, line_no, volume, area, None)
+        self._texts.append(loops)
+
+    def add_unreadable(self, grain_id: str, line_no: int, message: str) -> None:
+        self._rows.add(grain_id, line_no, np.nan, np.nan, message)
+        self._texts.append(b"")
+
+    def batch(self) -> GrainBatch:
+        from grainclass._kernels.text import _parse_faces
+
+        lengths = np.array([len(t) for t in self._texts], np.int64)
+        ends = np.cumsum(lengths + 1) - 1  # fields joined by one separator byte
+        starts = ends - lengths
+        buf = np.frombuffer(b"\n".join(self._texts) or b"\n", np.uint8)
+        loop_counts = np.zeros(len(self), np.int64)
+        loop_lengths = np.empty(len(buf) + 1, np.int64)
+        corners = np.empty(len(buf) + 1, np.int32)
+        loops, entries, bad = _parse_faces(buf, starts, ends, loop_counts, loop_lengths, corners)
+        for g in np.flatnonzero(bad):
+            self._rows.errors.setdefault(int(g), self.unreadable)
+        return self._rows.batch(
+            loop_counts,
+            offsets_from_counts(loop_lengths[:loops]),
+            corners[:entries].astype(np.int64),
+            None,
+        )
+
+
+class _Rows:
+    """What a batch of loop grains holds besides the loops: ids, where they are, volumes,
+    areas and the errors of rows that could not be read."""
+
+    def __init__(self, source: str, location_kind: str) -> None:
+        self.source, self.location_kind = source, location_kind
+        self.ids: list[str] = []
+        self.locations: list[int] = []
+        self.volumes: list[float] = []
+        self.areas: list[float] = []
+        self.errors: dict[int, str] = {}
+
+    def add(self, grain_id: str, location: int, volume: float, area: float, error: str | None):
+        if error is not None:
+            self.errors[len(self.ids)] = error
+        self.ids.append(grain_id)
+        self.locations.append(location)
+        self.volumes.append(volume)
+        self.areas.append(area)
+
+    def batch(
+        self,
+        face_counts: np.ndarray,
+        loop_offsets: np.ndarray,
+        corners: np.ndarray,
+        boundary: Sequence[bool | None] | None,
+    ) -> GrainBatch:
+        """The batch, with each grain's ``face_counts[g]`` loops, loop k being
+        ``corners[loop_offsets[k]:loop_offsets[k + 1]]`` (0 loops for a row with an error)."""
+        from grainclass._kernels.loops import OPEN, _adjacency_from_loops
+
+        face_offsets = offsets_from_counts(face_counts)
+        n_loops = len(loop_offsets) - 1
+        nbr_offsets = np.zeros(n_loops + 1, np.int64)
+        neighbors = np.empty(len(corners), np.int32)
+        flags = np.zeros(len(self.ids), np.int8)
+        bad = np.zeros((len(self.ids), 3), np.int64)
+        _adjacency_from_loops(
+            face_offsets, loop_offsets, corners, nbr_offsets, neighbors, flags, bad
+        )
+        neighbors = neighbors[: nbr_offsets[-1]]
+        open_surface = (flags & OPEN) != 0
+        if open_surface.any():  # such grains keep their row, without faces
+            for g in np.flatnonzero(open_surface):
+                u, v, count = bad[g]
+                self.errors[int(g)] = f"not a closed surface: edge {u}-{v} lies on {count} face(s)"
+            kept_faces = np.flatnonzero(np.repeat(~open_surface, face_counts))
+            nbr_counts = np.diff(nbr_offsets)[kept_faces]
+            neighbors = neighbors[run_indices(nbr_offsets[:-1][kept_faces], nbr_counts)]
+            face_offsets = offsets_from_counts(np.where(open_surface, 0, face_counts))
+            nbr_offsets = offsets_from_counts(nbr_counts)
+        return GrainBatch(
+            source=self.source,
+            grain_id=self.ids,
+            location=np.asarray(self.locations, np.int64),
+            location_kind=self.location_kind,
+            face_offsets=face_offsets,
+            nbr_offsets=nbr_offsets,
+            neighbors=neighbors,
+            parse_errors=self.errors,
+            volume=np.asarray(self.volumes, np.float64),
+            area=np.asarray(self.areas, np.float64),
+            boundary=None if boundary is None else tri_state(boundary),
+        )
 
 
 def read_loops(lines: Iterable[bytes], source: str, chunk_size: int) -> Iterator[GrainBatch]:
     """Parse face-loop text (module docstring) into batches of at most ``chunk_size`` grains."""
-    pending = []
+    rows = LoopText(source, "cannot read the loops: expected corner numbers, loops split by ';'")
     for line_no, raw in enumerate(lines, 1):
         line = raw.decode("utf-8", "replace").strip()
         if not line or line.startswith("#"):
             continue
         fields = line.split("\t")
-        grain_id = fields[0].strip()
+        grain_id = fields[0].strip() or f"line{line_no}"
         try:
             if len(fields) < 2:
                 raise ValueError("expected a grain id, a TAB and the face loops")
-            loops = [[int(t) for t in loop.split()] for loop in fields[1].strip(" ;").split(";")]
             values = dict(f.partition("=")[::2] for f in fields[2:])
             volume, area = (float(values.get(key, "nan")) for key in FLOAT_KEYS)
-            pending.append((grain_id, line_no, loops, volume, area, None))
         except ValueError as exc:
             message = str(exc) if "expected" in str(exc) else f"cannot read the loops ({exc})"
-            pending.append((grain_id or f"line{line_no}", line_no, None, np.nan, np.nan, message))
-        if len(pending) >= chunk_size:
-            yield batch_from_loops(pending, source)
-            pending = []
-    if pending:
-        yield batch_from_loops(pending, source)
+            rows.add_unreadable(grain_id, line_no, message)
+        else:
+            rows.add(grain_id, line_no, fields[1].strip(" ;").encode(), volume, area)
+        if len(rows) >= chunk_size:
+            yield rows.batch()
+            rows = LoopText(source, rows.unreadable)
+    if len(rows):
+        yield rows.batch()

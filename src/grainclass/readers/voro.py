@@ -14,10 +14,9 @@ from collections.abc import Iterable, Iterator
 import numpy as np
 
 from grainclass.batch import GrainBatch
-from grainclass.readers.loops import batch_from_loops
+from grainclass.readers.loops import LoopText
 
 LINE = re.compile(rb"^\s*\d+(\s+[-+0-9.eE]+){0,2}\s+\(\d+(,\d+)*\)")
-_LOOP = re.compile(r"\(([0-9,\s]*)\)")
 
 
 def looks_like_voro(head: bytes) -> bool:
@@ -26,29 +25,33 @@ def looks_like_voro(head: bytes) -> bool:
     return bool(LINE.match(first))
 
 
+# A loop "(1,3,2)" read as the loop text of loops.py, "1 3 2;" (byte for byte, in C).
+_AS_LOOP_TEXT = bytes.maketrans(b"(,)", b"  ;")
+
+
 def read_voro(lines: Iterable[bytes], source: str, chunk_size: int) -> Iterator[GrainBatch]:
     """Parse Voro++ ``%t`` output into batches of at most ``chunk_size`` cells."""
-    pending = []
+    unreadable = "cannot read this cell: expected id [volume [area]] (loop) (loop) ..."
+    rows = LoopText(source, unreadable)
     for line_no, raw in enumerate(lines, 1):
-        line = raw.decode("utf-8", "replace").strip()
-        if not line or line.startswith("#"):
+        line = raw.strip()
+        if not line or line.startswith(b"#"):
             continue
-        head, paren, _ = line.partition("(")
-        tokens = head.split()
+        head, paren, loops = line.partition(b"(")
+        tokens = head.decode("utf-8", "replace").split()
         grain_id = tokens[0] if tokens else f"line{line_no}"
         try:
             if not paren or not 1 <= len(tokens) <= 3:
                 raise ValueError("expected: id [volume [area]] (loop) (loop) ...")
             int(tokens[0])
             numbers = [float(t) for t in tokens[1:]] + [np.nan, np.nan]
-            loops = [[int(v) for v in loop.split(",")] for loop in _LOOP.findall(line[len(head) :])]
-            pending.append((grain_id, line_no, loops, numbers[0], numbers[1], None))
         except ValueError as exc:
-            pending.append(
-                (grain_id, line_no, None, np.nan, np.nan, f"cannot read this cell: {exc}")
-            )
-        if len(pending) >= chunk_size:
-            yield batch_from_loops(pending, source)
-            pending = []
-    if pending:
-        yield batch_from_loops(pending, source)
+            rows.add_unreadable(grain_id, line_no, f"cannot read this cell: {exc}")
+        else:
+            text = (paren + loops).translate(_AS_LOOP_TEXT)
+            rows.add(grain_id, line_no, text, numbers[0], numbers[1])
+        if len(rows) >= chunk_size:
+            yield rows.batch()
+            rows = LoopText(source, unreadable)
+    if len(rows):
+        yield rows.batch()
