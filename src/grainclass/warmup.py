@@ -14,6 +14,10 @@ import subprocess
 import sys
 from collections.abc import Iterator
 from contextlib import contextmanager
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from grainclass.batch import GrainBatch
 
 CUBE = [[1, 2, 3, 4], [0, 4, 5, 2], [0, 1, 5, 3], [0, 2, 5, 4], [0, 3, 5, 1], [1, 4, 3, 2]]
 _STOP_WAIT = 2.0  # seconds the helper may take to finish once the main process is done
@@ -70,7 +74,7 @@ def fill_cache(types: bool) -> None:
     classify(batch, types=types)
 
 
-def _last_kernels_first(batch: object, types: bool) -> None:
+def _last_kernels_first(batch: GrainBatch, types: bool) -> None:
     """The Weinberg walk and the table's column kernels, on made-up outputs of the
     classification (every grain ok): the calls and argument types of ``classify`` itself."""
     from grainclass._kernels import codes
