@@ -127,8 +127,46 @@ def _walk(
 
 
 @njit
-def _weinberg(corner_nbr, corner_back, left_face, t, best, stamp, label, used, code, tied):
-    """Canonical code into ``best``; returns (symmetry, chirality). ``tied`` (6t entries) is
+def _smallest_walks(corner_nbr, corner_back, walks, count, length, best, gen, scratch):
+    """Walk each of ``walks[:count]`` (``6 start + 2 first + (turn > 0)``) over its first
+    ``length`` entries, the smallest code into ``best``; the walks that give it are moved to the
+    front of ``walks``. Returns ``(their number, the next gen)``."""
+    stamp, label, used, code = scratch
+    best[0] = -1  # nothing yet: the first walk wins
+    kept = 0
+    for j in range(count):  # kept ones are moved down: kept never passes j
+        walk = walks[j]
+        start, first, turn = walk // 6, walk % 6 // 2, 1 if walk & 1 else -1
+        state = -1 if best[0] < 0 else 0
+        result = _walk(
+            corner_nbr,
+            corner_back,
+            length,
+            start,
+            first,
+            turn,
+            best,
+            state,
+            stamp,
+            gen,
+            label,
+            used,
+            code,
+        )
+        gen += 1
+        if result < 0:
+            for i in range(length):
+                best[i] = code[i]
+            kept = 0
+        if result <= 0:
+            walks[kept] = walk
+            kept += 1
+    return kept, gen
+
+
+@njit
+def _weinberg(corner_nbr, corner_back, left_face, t, best, stamp, label, used, code, walks):
+    """Canonical code into ``best``; returns (symmetry, chirality). ``walks`` (6t entries) is
     scratch.
 
     A walk first goes round the face on its turning side and writes 1 again after as many
@@ -142,10 +180,7 @@ def _weinberg(corner_nbr, corner_back, left_face, t, best, stamp, label, used, c
     for c in range(t):
         for k in range(3):
             smallest = min(smallest, left_face[c, k])
-    gen = 1  # the caller zeroed stamp and used
-    short = min(PREFIX, length)
-    best[0] = -1  # nothing yet: the first walk wins
-    n_tied = 0
+    count = 0
     for start in range(t):
         for first in range(3):
             for turn in (-1, 1):
@@ -153,67 +188,24 @@ def _weinberg(corner_nbr, corner_back, left_face, t, best, stamp, label, used, c
                 # right of edge ``first`` (the left face of the next edge); turning left, the
                 # face left of it.
                 side = (first + 1) % 3 if turn < 0 else first
-                if left_face[start, side] != smallest:
-                    continue
-                state = -1 if best[0] < 0 else 0
-                result = _walk(
-                    corner_nbr,
-                    corner_back,
-                    short,
-                    start,
-                    first,
-                    turn,
-                    best,
-                    state,
-                    stamp,
-                    gen,
-                    label,
-                    used,
-                    code,
-                )
-                gen += 1
-                if result < 0:
-                    for i in range(short):
-                        best[i] = code[i]
-                    n_tied = 0
-                if result <= 0:
-                    tied[n_tied] = 6 * start + 2 * first + (turn > 0)
-                    n_tied += 1
-    if short < length:  # the ties walked in full, the same way
-        best[0] = -1
-        for j in range(n_tied):  # kept ones are moved down: n_tied never passes j
-            start, first, turn = tied[j] // 6, tied[j] % 6 // 2, 1 if tied[j] & 1 else -1
-            state = -1 if best[0] < 0 else 0
-            result = _walk(
-                corner_nbr,
-                corner_back,
-                length,
-                start,
-                first,
-                turn,
-                best,
-                state,
-                stamp,
-                gen,
-                label,
-                used,
-                code,
-            )
-            gen += 1
-            if result < 0:
-                for i in range(length):
-                    best[i] = code[i]
-                n_tied = 0
-            if result <= 0:
-                tied[n_tied] = tied[j]
-                n_tied += 1
+                if left_face[start, side] == smallest:
+                    walks[count] = 6 * start + 2 * first + (turn > 0)
+                    count += 1
+    gen = 1  # the caller zeroed stamp and used
+    scratch = (stamp, label, used, code)
+    short = min(PREFIX, length)
+    count, gen = _smallest_walks(corner_nbr, corner_back, walks, count, short, best, gen, scratch)
+    if short < length:  # the ties of the prefix walked in full
+        count, gen = _smallest_walks(
+            corner_nbr, corner_back, walks, count, length, best, gen, scratch
+        )
     # The walks giving the smallest code: one per symmetry (reflections included).
     right = 0
-    for j in range(n_tied):
-        right += (tied[j] & 1) == 0
-    left = n_tied - right
+    for j in range(count):
+        right += (walks[j] & 1) == 0
+    left = count - right
     chirality = 0 if right and left else (1 if right else -1)
-    return n_tied, chirality
+    return count, chirality
 
 
 @njit
@@ -266,7 +258,7 @@ def _weinberg_batch(
     label = np.empty(t_max, np.int64)
     used = np.zeros((t_max, 3), np.int64)
     code = np.empty(3 * t_max + 1, np.int32)
-    tied = np.empty(6 * t_max, np.int64)
+    walks = np.empty(6 * t_max, np.int64)
     for g in range(first, last):
         if not ok[g]:
             continue
@@ -280,5 +272,5 @@ def _weinberg_batch(
             used[c, 0] = used[c, 1] = used[c, 2] = 0
         best = codes[code_offsets[g] : code_offsets[g] + 3 * t + 1]
         symmetry[g], chirality[g] = _weinberg(
-            corner_nbr, corner_back, left_face, t, best, stamp, label, used, code, tied
+            corner_nbr, corner_back, left_face, t, best, stamp, label, used, code, walks
         )
