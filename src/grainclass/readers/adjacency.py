@@ -94,16 +94,7 @@ class _Chunk:
                 column.append(None)
 
     def batch(self) -> GrainBatch:
-        from grainclass._kernels.text import _parse_faces as parse_fields
-
-        lengths = np.array([len(f) for f in self.faces], np.int64)
-        ends = np.cumsum(lengths + 1) - 1  # fields joined by one separator byte
-        starts = ends - lengths
-        buf = np.frombuffer(b"\n".join(self.faces) or b"\n", np.uint8)
-        n_faces = np.zeros(len(self), np.int64)
-        degrees = np.empty(len(buf) + 1, np.int64)
-        neighbors = np.empty(len(buf) + 1, np.int32)
-        faces, entries, bad = parse_fields(buf, starts, ends, n_faces, degrees, neighbors)
+        n_faces, degrees, neighbors, bad = parse_face_fields(self.faces)
         for g in np.flatnonzero(bad):
             if g not in self.parse_errors:
                 self.parse_errors[int(g)] = _faces_error(self.faces[g].decode())
@@ -113,14 +104,34 @@ class _Chunk:
             location=np.asarray(self.location, np.int64),
             location_kind="line",
             face_offsets=np.concatenate([[0], np.cumsum(n_faces)]),
-            nbr_offsets=np.concatenate([[0], np.cumsum(degrees[:faces])]),
-            neighbors=neighbors[:entries],
+            nbr_offsets=np.concatenate([[0], np.cumsum(degrees)]),
+            neighbors=neighbors,
             parse_errors=self.parse_errors,
             volume=np.asarray(self.floats["volume"], np.float64),
             area=np.asarray(self.floats["area"], np.float64),
             boundary=np.asarray(self.boundary, np.int8) if max(self.boundary) >= 0 else None,
             attributes=self.attributes,
         )
+
+
+def parse_face_fields(
+    fields: list[bytes],
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Faces fields (``1 2 3;0 4 5 2;...``, one per grain) parsed for a whole chunk by one
+    kernel call: ``(faces per grain, entries per face, the entries, unreadable)``. An unreadable
+    field (anything but digits, blanks and ``;``, or an empty face) gets no faces.
+    """
+    from grainclass._kernels.text import _parse_faces
+
+    lengths = np.array([len(f) for f in fields], np.int64)
+    ends = np.cumsum(lengths + 1) - 1  # fields joined by one separator byte
+    starts = ends - lengths
+    buf = np.frombuffer(b"\n".join(fields) or b"\n", np.uint8)
+    n_faces = np.zeros(len(fields), np.int64)
+    degrees = np.empty(len(buf) + 1, np.int64)
+    neighbors = np.empty(len(buf) + 1, np.int32)
+    faces, entries, bad = _parse_faces(buf, starts, ends, n_faces, degrees, neighbors)
+    return n_faces, degrees[:faces], neighbors[:entries], bad
 
 
 def _faces_error(text: str) -> str:

@@ -17,6 +17,7 @@ from collections.abc import Iterable, Iterator, Sequence
 import numpy as np
 
 from grainclass.batch import GrainBatch, offsets_from_counts, run_indices, tri_state
+from grainclass.readers.adjacency import parse_face_fields
 
 FLOAT_KEYS = ("volume", "area")
 
@@ -85,23 +86,11 @@ class LoopText:
         self._texts.append(b"")
 
     def batch(self) -> GrainBatch:
-        from grainclass._kernels.text import _parse_faces
-
-        lengths = np.array([len(t) for t in self._texts], np.int64)
-        ends = np.cumsum(lengths + 1) - 1  # fields joined by one separator byte
-        starts = ends - lengths
-        buf = np.frombuffer(b"\n".join(self._texts) or b"\n", np.uint8)
-        loop_counts = np.zeros(len(self), np.int64)
-        loop_lengths = np.empty(len(buf) + 1, np.int64)
-        corners = np.empty(len(buf) + 1, np.int32)
-        loops, entries, bad = _parse_faces(buf, starts, ends, loop_counts, loop_lengths, corners)
+        loop_counts, loop_lengths, corners, bad = parse_face_fields(self._texts)
         for g in np.flatnonzero(bad):
             self._rows.errors.setdefault(int(g), self.unreadable)
         return self._rows.batch(
-            loop_counts,
-            offsets_from_counts(loop_lengths[:loops]),
-            corners[:entries].astype(np.int64),
-            None,
+            loop_counts, offsets_from_counts(loop_lengths), corners.astype(np.int64), None
         )
 
 
