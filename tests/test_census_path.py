@@ -15,6 +15,8 @@ import sys
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from grainclass.classification import grain_codes
 from grainclass.pipeline import tallies
@@ -50,6 +52,48 @@ def _bipyramid(k: int) -> list[list[int]]:
     north, south = k, k + 1
     ring = [[(i - 1) % k, north, (i + 1) % k, south] for i in range(k)]
     return [*ring, list(range(k)), list(reversed(range(k)))]
+
+
+def _record_ends(data: bytes) -> list[int]:
+    """Where each complete 1-byte record ends: after its n-th zero (plain Python)."""
+    ends, pos = [], 0
+    while pos < len(data):
+        n, end, zeros = data[pos], pos + 1, 0
+        while zeros < n and end < len(data):
+            zeros += data[end] == 0
+            end += 1
+        if zeros < n:
+            break
+        ends.append(end)
+        pos = end
+    return ends
+
+
+@st.composite
+def _near_triangulation_records(draw) -> bytes:
+    """A 1-byte record that is, or nearly is, as long as a triangulation's: n lists whose
+    lengths add up to 6n - 12 give or take one, empty lists and zeros where a triangulation's
+    last list would end included."""
+    n = draw(st.integers(1, 20))
+    total = max(0, 6 * n - 12 + draw(st.sampled_from([-1, 0, 0, 1])))
+    cuts = sorted(draw(st.lists(st.integers(0, total), min_size=n - 1, max_size=n - 1)))
+    sizes = [b - a for a, b in zip([0, *cuts], [*cuts, total], strict=True)]
+    entry = st.integers(1, 255)
+    lists = [draw(st.lists(entry, min_size=size, max_size=size)) for size in sizes]
+    return bytes([n] + [x for nbrs in lists for x in [*nbrs, 0]])
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.lists(_near_triangulation_records(), min_size=1, max_size=12), st.integers(0, 5))
+def test_records_are_cut_where_their_nth_zero_is(records, cut):
+    from grainclass._kernels.planar_code import _scan
+
+    data = b"".join(records)[: -cut or None]
+    starts = np.empty(len(records) + 1, np.int64)
+    found, _, _, consumed = _scan(np.frombuffer(data, np.uint8), False, len(records), starts)
+    ends = _record_ends(data)
+    assert starts[1 : found + 1].tolist() == ends
+    assert consumed == (ends[-1] if ends else 0)
 
 
 @pytest.mark.parametrize("n", range(4, 12))
