@@ -1,10 +1,11 @@
 """``make bench``: how fast and how big, measured in one run on this machine.
 
-Reports (a) plantri alone against plantri piped through ``grainclass classify`` and through
-``grainclass summarize``, with ratios; (b) kernel-only grains per second; (c) 268,402 grains of
-adjacency text end to end; (d) peak resident memory of every run; (e) the first run after
-installation (numba compiling) against a warm run, and ``grainclass --help``; (f) the Voronoi
-generator; (g) ``grainclass census`` against plantri alone on the same parts.
+Reports (a) plantri alone against plantri piped through ``cat`` (what the pipe itself costs),
+through ``grainclass classify`` and through ``grainclass summarize``, with ratios;
+(b) kernel-only grains per second; (c) 268,402 grains of adjacency text end to end; (d) peak
+resident memory of every run; (e) the first run after installation (numba compiling) against a
+warm run, and ``grainclass --help``; (f) the Voronoi generator; (g) ``grainclass census``
+against plantri alone on the same parts.
 Benchmarks report; they assert nothing (the tests do that).
 """
 
@@ -102,6 +103,9 @@ def bench_pipelines(sizes: list[int], work: Path) -> None:
     for n in sizes:
         alone, mem_alone = timed(f"{plantri} {n} > /dev/null 2>&1")
         print(f"    n={n}: plantri alone {alone:6.2f} s ({mem_alone:.0f} MB)")
+        # The floor of any pipe: plantri writes 4 kB at a time, and the reader must wake up.
+        piped, _ = timed(f"{plantri} {n} 2>/dev/null | cat > /dev/null")
+        print(f"        | cat (the pipe alone)  {piped:6.2f} s  x{piped / alone:5.2f}")
         for name, command in runs.items():
             seconds, mem = timed(f"{plantri} {n} 2>/dev/null | {command}")
             print(f"        | {name:21s} {seconds:6.2f} s  x{seconds / alone:5.2f}  {mem:5.0f} MB")
