@@ -12,7 +12,7 @@ import pyarrow.parquet as pq
 import pytest
 from click.testing import CliRunner
 
-from conftest import EXAMPLES
+from conftest import EXAMPLES, ROOT
 from grainclass import cli as cli_module
 from grainclass.cli import cli
 from grainclass.parquet import GrainTableWriter
@@ -267,6 +267,25 @@ def test_help_imports_nothing_heavy():
         [sys.executable, "-c", code], capture_output=True, text=True, check=True
     )
     assert result.stdout.splitlines()[-1] == "[]"
+
+
+def test_classify_never_imports_pandas(tmp_path):
+    """pandas costs 0.3 s to import and classify has no use for it (pyarrow's pa.array would
+    import it just to ask whether its input is a pandas object)."""
+    out = tmp_path / "out.parquet"
+    code = (
+        "import sys\n"
+        "from grainclass.cli import cli\n"
+        "for path in sys.argv[1:]:\n"
+        f"    try:\n        cli(['classify', path, '-o', {str(out)!r}, '-q'])\n"
+        "    except SystemExit as exc:\n        assert not exc.code, exc.code\n"
+        "print('pandas' in sys.modules)\n"
+    )
+    inputs = ["polytopes.txt", "bad-grains.txt", "plantri-10.pc"]
+    command = [sys.executable, "-c", code, *(str(EXAMPLES / name) for name in inputs)]
+    evolver = ROOT / "tests" / "data" / "evolver" / "two_cubes.fe"
+    result = subprocess.run([*command, str(evolver)], capture_output=True, text=True, check=True)
+    assert result.stdout.splitlines()[-1] == "False"
 
 
 def test_classify_output_gets_ordinary_file_permissions(runner, tmp_path):
