@@ -51,14 +51,24 @@ def booleans(values: np.ndarray, valid: np.ndarray | None = None) -> pa.Array:
 
 def strings(values: Sequence[str | None]) -> pa.Array:
     """A string column from Python strings, None as null."""
-    encoded = [b"" if value is None else value.encode() for value in values]
-    offsets = np.zeros(len(encoded) + 1, np.int64)
-    np.cumsum(np.fromiter(map(len, encoded), np.int64, len(encoded)), out=offsets[1:])
+    values = list(values)
+    valid = None
+    if None in values:
+        valid = np.fromiter((value is not None for value in values), bool, len(values))
+        values = ["" if value is None else value for value in values]
+    text = "".join(values)
+    if text.isascii():  # one encode for all: a character is a byte
+        data = text.encode("ascii")
+        lengths = np.fromiter(map(len, values), np.int64, len(values))
+    else:
+        encoded = [value.encode() for value in values]
+        data = b"".join(encoded)
+        lengths = np.fromiter(map(len, encoded), np.int64, len(values))
+    offsets = np.zeros(len(values) + 1, np.int64)
+    np.cumsum(lengths, out=offsets[1:])
     if offsets[-1] > np.iinfo(np.int32).max:
         raise ValueError("the strings of one batch exceed 2 GB: use a smaller chunk size")
-    valid = np.fromiter((value is not None for value in values), bool, len(values))
-    data = np.frombuffer(b"".join(encoded), np.uint8)
-    return string_array(offsets.astype(np.int32), data, valid)
+    return string_array(offsets.astype(np.int32), np.frombuffer(data, np.uint8), valid)
 
 
 def strings_from_codes(codes: np.ndarray, names: tuple[str, ...]) -> pa.Array:
