@@ -13,6 +13,9 @@ from typing import Any
 
 __version__ = "0.1.0"
 
+# Grains per batch: per compiled call, per thread and per Parquet row group.
+DEFAULT_CHUNK_SIZE = 50_000
+
 __all__ = ["GrainBatch", "__version__", "classify", "read_dataset", "summarize"]
 
 _LAZY = {

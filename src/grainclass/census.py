@@ -27,6 +27,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+from grainclass import DEFAULT_CHUNK_SIZE
 from grainclass.errors import GrainclassError
 
 if TYPE_CHECKING:
@@ -359,7 +360,7 @@ def run_census(
     parts: int,
     directory: str | os.PathLike,
     client: Client,
-    chunk_size: int = 50_000,
+    chunk_size: int = DEFAULT_CHUNK_SIZE,
     plantri: str | None = None,
     report: Callable[[CensusProgress], None] | None = None,
 ) -> CensusResult:

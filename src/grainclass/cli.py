@@ -11,7 +11,7 @@ import sys
 
 import click
 
-from grainclass import __version__
+from grainclass import DEFAULT_CHUNK_SIZE, __version__
 
 EXIT_CODES = """\b
 Exit codes:
@@ -78,7 +78,7 @@ def _input_options(*format_flags: str, types: bool = True):
         click.option(
             "--chunk-size",
             type=click.IntRange(min=1),
-            default=50_000,
+            default=DEFAULT_CHUNK_SIZE,
             show_default=True,
             help="Grains per batch (and per Parquet row group).",
         ),
@@ -418,7 +418,7 @@ def _vertex_counts(
 @click.option(
     "--chunk-size",
     type=click.IntRange(min=1),
-    default=50_000,
+    default=DEFAULT_CHUNK_SIZE,
     show_default=True,
     help="Triangulations per batch inside a task.",
 )

@@ -15,9 +15,10 @@ from typing import TYPE_CHECKING, TypeVar
 
 import pyarrow as pa
 
+from grainclass import DEFAULT_CHUNK_SIZE
 from grainclass.classification import classify
 from grainclass.parallel import map_ordered
-from grainclass.readers import DEFAULT_CHUNK_SIZE, read_dataset, stdin
+from grainclass.readers import read_dataset, stdin
 from grainclass.readers.evolver import DEFAULT_TRIPLE_EDGES
 
 if TYPE_CHECKING:

@@ -32,6 +32,7 @@ from multiprocessing import get_context
 
 import numpy as np
 
+from grainclass import DEFAULT_CHUNK_SIZE
 from grainclass.batch import GrainBatch, offsets_from_counts, run_indices
 from grainclass.errors import GrainclassError
 
@@ -54,7 +55,7 @@ def poisson_voronoi(
     n_seeds: int,
     seed: int | None = None,
     box: float = 1.0,
-    chunk_size: int = 50_000,
+    chunk_size: int = DEFAULT_CHUNK_SIZE,
     report: VoronoiReport | None = None,
     slab_seeds: int = SLAB_SEEDS,
 ) -> Iterator[GrainBatch]:

@@ -15,6 +15,7 @@ from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
 from typing import BinaryIO
 
+from grainclass import DEFAULT_CHUNK_SIZE
 from grainclass.batch import GrainBatch
 from grainclass.errors import InputError
 from grainclass.readers.adjacency import read_adjacency
@@ -26,7 +27,6 @@ from grainclass.readers.voro import looks_like_voro, read_voro
 
 FORMATS = ("adjacency", "planar_code", "evolver", "voro", "neper", "loops")
 _EVOLVER = re.compile(rb"(?im)^\s*(vertices|torus_filled|torus|periods)\s*(//.*)?$")
-DEFAULT_CHUNK_SIZE = 50_000
 
 
 def sniff(head: bytes) -> str:
