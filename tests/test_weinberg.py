@@ -73,6 +73,49 @@ def test_codes_agree_with_brute_force_on_every_triangulation(plantri_output, n):
         assert (row["symmetry"], row["chirality"]) == (symmetry, chirality)
 
 
+def _walk_beginnings(lists: list[list[int]]):
+    """For every start (corner, first edge, turn) of the reference walk: its code and the sizes
+    (s, m, q) of the start corner's faces, the one walked first (on the turning side of the
+    first edge), the one opposite the first edge, and the first edge's other face."""
+    triangles = sorted(reference.oriented_faces(lists))
+    on_side = {
+        side: t for t, (a, b, c) in enumerate(triangles) for side in ((a, b), (b, c), (c, a))
+    }
+    around = [[on_side[(b, a)], on_side[(c, b)], on_side[(a, c)]] for a, b, c in triangles]
+    for t, faces in enumerate(triangles):
+        for first in range(3):
+            on_edge = (faces[first], faces[(first + 1) % 3])
+            opposite = len(lists[faces[(first + 2) % 3]])
+            for turn in (-1, 1):
+                walked, other = on_edge if turn > 0 else on_edge[::-1]
+                code = reference._walk(around, t, first, turn)
+                yield code, (len(lists[walked]), opposite, len(lists[other]))
+
+
+def _predicted_beginning(s: int, m: int, q: int) -> list[int]:
+    """What the kernel's choice of starts assumes: round the first face (1..s, back to 1), back
+    one edge (s), round the opposite face (m - 2 new labels, then 1), back one edge, and round
+    the first edge's other face (q - 3 new labels, then 2)."""
+    return [*range(1, s + 1), 1, s, *range(s + 1, s + m - 1), 1, s + m - 2,
+            *range(s + m - 1, s + m + q - 4), 2]  # fmt: skip
+
+
+@pytest.mark.parametrize("n", range(4, 10))
+def test_walks_begin_as_the_start_corners_faces_say(plantri_output, n):
+    for lists in _read_planar_code(plantri_output(n).read_bytes()):
+        for code, sizes in _walk_beginnings(lists):
+            beginning = _predicted_beginning(*sizes)
+            assert list(code[: len(beginning)]) == beginning
+
+
+@settings(max_examples=40, deadline=None)
+@given(triangulations(max_vertices=16))
+def test_random_walks_begin_as_the_start_corners_faces_say(lists):
+    for code, sizes in _walk_beginnings(lists):
+        beginning = _predicted_beginning(*sizes)
+        assert list(code[: len(beginning)]) == beginning
+
+
 @settings(max_examples=60, deadline=None)
 @given(triangulations(max_vertices=18), st.randoms(use_true_random=False))
 def test_relabelling_keeps_and_mirroring_flips_chirality(lists, rng):

@@ -169,26 +169,32 @@ def _weinberg(corner_nbr, corner_back, left_face, t, best, stamp, label, used, c
     """Canonical code into ``best``; returns (symmetry, chirality). ``walks`` (6t entries) is
     scratch.
 
-    A walk first goes round the face on its turning side and writes 1 again after as many
-    steps as that face has sides, so only edges along faces of the smallest size can start the
+    The three faces at the start corner fix how a walk's code begins. It goes round the face on
+    its turning side first (s sides: 1, 2, ..., s, then 1 again), back one edge (s), round the
+    face opposite its first edge (m sides: m - 2 new labels, then 1), back one edge, and round
+    the other face of its first edge (q sides: q - 3 new labels, then 2). Two faces of a simple
+    polytope share at most an edge, so those labels are new, and a smaller face writes its 1 or
+    2 where a larger one writes a new label: only starts with the least (s, m, q) can give the
     smallest code. Of those, most lose within a dozen steps, but a walk that is ahead of the
-    best so far runs to the end: so the candidates are first compared over their first
-    PREFIX entries only, and only the ones tied with the smallest prefix are walked in full.
+    best so far runs to the end: so the candidates are first compared over their first PREFIX
+    entries only, and only the ones tied with the smallest prefix are walked in full.
     """
     length = 3 * t + 1  # 2E + 1 with E = 3t/2
-    smallest = left_face[0, 0]
-    for c in range(t):
-        for k in range(3):
-            smallest = min(smallest, left_face[c, k])
+    sizes = t + 1  # a face has at most t corners
+    least = -1
     count = 0
     for start in range(t):
         for first in range(3):
+            opposite = left_face[start, (first + 2) % 3]
             for turn in (-1, 1):
-                # A walk goes round the face on its turning side first: turning right, the face
-                # right of edge ``first`` (the left face of the next edge); turning left, the
-                # face left of it.
+                # Turning right, the walk goes round the face right of edge ``first`` (the left
+                # face of the next edge); turning left, the face left of it.
                 side = (first + 1) % 3 if turn < 0 else first
-                if left_face[start, side] == smallest:
+                other = first if turn < 0 else (first + 1) % 3
+                key = (left_face[start, side] * sizes + opposite) * sizes + left_face[start, other]
+                if least < 0 or key < least:
+                    least, count = key, 0
+                if key == least:
                     walks[count] = 6 * start + 2 * first + (turn > 0)
                     count += 1
     gen = 1  # the caller zeroed stamp and used
