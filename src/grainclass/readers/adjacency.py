@@ -8,6 +8,7 @@ kept as string columns.
 
 from __future__ import annotations
 
+import itertools
 from collections.abc import Iterable, Iterator
 
 import numpy as np
@@ -114,6 +115,44 @@ class _Chunk:
         )
 
 
+def _plain_batch(raw_lines: list[bytes], first_line: int, source: str) -> GrainBatch | None:
+    """The batch of a run of lines that are all plain grains, ``id<TAB>faces`` in ASCII, split
+    by a compiled kernel, the ids going straight into an Arrow array: no Python object per line.
+    None for any other run (a comment, a blank line, a key=value field, other text), which is
+    then read line by line."""
+    from grainclass._kernels.text import _plain_lines
+    from grainclass.arrow import string_array
+
+    buf = np.frombuffer(b"".join(raw_lines), np.uint8)
+    g = len(raw_lines)
+    id_starts, id_ends, faces_starts, faces_ends = np.empty((4, g), np.int64)
+    if _plain_lines(buf, id_starts, id_ends, faces_starts, faces_ends) != g:
+        return None
+    n_faces, degrees, neighbors, bad = parse_face_spans(buf, faces_starts, faces_ends)
+    parse_errors = {
+        int(i): _faces_error(buf[faces_starts[i] : faces_ends[i]].tobytes().decode())
+        for i in np.flatnonzero(bad)
+    }
+    lengths = id_ends - id_starts
+    id_offsets = np.zeros(g + 1, np.int64)
+    np.cumsum(lengths, out=id_offsets[1:])
+    within = np.arange(id_offsets[-1]) - np.repeat(id_offsets[:-1], lengths)
+    id_bytes = buf[np.repeat(id_starts, lengths) + within]
+    volume = np.full(g, np.nan)
+    return GrainBatch(
+        source=source,
+        grain_id=string_array(id_offsets.astype(np.int32), id_bytes),
+        location=np.arange(first_line, first_line + g, dtype=np.int64),
+        location_kind="line",
+        face_offsets=np.concatenate([[0], np.cumsum(n_faces)]),
+        nbr_offsets=np.concatenate([[0], np.cumsum(degrees)]),
+        neighbors=neighbors,
+        parse_errors=parse_errors,
+        volume=volume,
+        area=volume.copy(),
+    )
+
+
 def parse_face_fields(
     fields: list[bytes],
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
@@ -121,13 +160,19 @@ def parse_face_fields(
     kernel call: ``(faces per grain, entries per face, the entries, unreadable)``. An unreadable
     field (anything but digits, blanks and ``;``, or an empty face) gets no faces.
     """
-    from grainclass._kernels.text import _parse_faces
-
     lengths = np.array([len(f) for f in fields], np.int64)
     ends = np.cumsum(lengths + 1) - 1  # fields joined by one separator byte
     starts = ends - lengths
-    buf = np.frombuffer(b"\n".join(fields) or b"\n", np.uint8)
-    n_faces = np.zeros(len(fields), np.int64)
+    return parse_face_spans(np.frombuffer(b"\n".join(fields) or b"\n", np.uint8), starts, ends)
+
+
+def parse_face_spans(
+    buf: np.ndarray, starts: np.ndarray, ends: np.ndarray
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """:func:`parse_face_fields` for the fields ``buf[starts[g]:ends[g]]`` of one buffer."""
+    from grainclass._kernels.text import _parse_faces
+
+    n_faces = np.zeros(len(starts), np.int64)
     degrees = np.empty(len(buf) + 1, np.int64)
     neighbors = np.empty(len(buf) + 1, np.int32)
     faces, entries, bad = _parse_faces(buf, starts, ends, n_faces, degrees, neighbors)
@@ -164,19 +209,30 @@ def read_adjacency(lines: Iterable[bytes], source: str, chunk_size: int) -> Iter
         Every non-comment line becomes one grain, readable or not.
     """
     chunk = _Chunk(source)
-    for line_no, raw in enumerate(lines, 1):
-        try:
-            line = raw.decode("utf-8").rstrip("\r\n")
-        except UnicodeDecodeError as exc:
-            grain_id = raw.split(b"\t", 1)[0].decode("utf-8", "replace").strip()
-            chunk.add_unreadable(line_no, grain_id, f"not UTF-8 text ({exc.reason})")
+    stream = iter(lines)
+    first_line = 1
+    while raw_lines := list(itertools.islice(stream, chunk_size)):
+        plain = _plain_batch(raw_lines, first_line, source)
+        if plain is not None:
+            if len(chunk):
+                yield chunk.batch()
+                chunk = _Chunk(source)
+            yield plain
         else:
-            if not line.strip() or line.lstrip().startswith("#"):
-                continue
-            chunk.add(line_no, line)
-        if len(chunk) >= chunk_size:
-            yield chunk.batch()
-            chunk = _Chunk(source)
+            for line_no, raw in enumerate(raw_lines, first_line):
+                try:
+                    line = raw.decode("utf-8").rstrip("\r\n")
+                except UnicodeDecodeError as exc:
+                    grain_id = raw.split(b"\t", 1)[0].decode("utf-8", "replace").strip()
+                    chunk.add_unreadable(line_no, grain_id, f"not UTF-8 text ({exc.reason})")
+                else:
+                    if not line.strip() or line.lstrip().startswith("#"):
+                        continue
+                    chunk.add(line_no, line)
+                if len(chunk) >= chunk_size:
+                    yield chunk.batch()
+                    chunk = _Chunk(source)
+        first_line += len(raw_lines)
     if len(chunk):
         yield chunk.batch()
 
