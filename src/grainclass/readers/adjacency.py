@@ -136,6 +136,8 @@ def _plain_batch(raw_lines: list[bytes], first_line: int, source: str) -> GrainB
     lengths = id_ends - id_starts
     id_offsets = np.zeros(g + 1, np.int64)
     np.cumsum(lengths, out=id_offsets[1:])
+    if id_offsets[-1] > np.iinfo(np.int32).max:  # past Arrow's string offsets: read line by line
+        return None
     within = np.arange(id_offsets[-1]) - np.repeat(id_offsets[:-1], lengths)
     id_bytes = buf[np.repeat(id_starts, lengths) + within]
     volume = np.full(g, np.nan)
