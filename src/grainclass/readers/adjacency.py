@@ -128,16 +128,16 @@ def _plain_batch(raw_lines: list[bytes], first_line: int, source: str) -> GrainB
     id_starts, id_ends, faces_starts, faces_ends = np.empty((4, g), np.int64)
     if _plain_lines(buf, id_starts, id_ends, faces_starts, faces_ends) != g:
         return None
-    n_faces, degrees, neighbors, bad = parse_face_spans(buf, faces_starts, faces_ends)
-    parse_errors = {
-        int(i): _faces_error(buf[faces_starts[i] : faces_ends[i]].tobytes().decode())
-        for i in np.flatnonzero(bad)
-    }
     lengths = id_ends - id_starts
     id_offsets = np.zeros(g + 1, np.int64)
     np.cumsum(lengths, out=id_offsets[1:])
     if id_offsets[-1] > np.iinfo(np.int32).max:  # past Arrow's string offsets: read line by line
         return None
+    n_faces, degrees, neighbors, bad = parse_face_spans(buf, faces_starts, faces_ends)
+    parse_errors = {
+        int(i): _faces_error(buf[faces_starts[i] : faces_ends[i]].tobytes().decode())
+        for i in np.flatnonzero(bad)
+    }
     within = np.arange(id_offsets[-1]) - np.repeat(id_offsets[:-1], lengths)
     id_bytes = buf[np.repeat(id_starts, lengths) + within]
     volume = np.full(g, np.nan)
