@@ -115,17 +115,10 @@ def test_bytes_and_csr_paths_agree_on_planar_graphs_that_are_not_triangulations(
 def test_bytes_and_csr_paths_agree_on_damaged_records(plantri_output):
     data = plantri_output(11).read_bytes()
     header = b">>planar_code<<"
-    records = []
-    pos = len(header)
-    while pos < len(data):
-        n = data[pos]
-        end = pos + 1
-        zeros = 0
-        while zeros < n:
-            zeros += data[end] == 0
-            end += 1
-        records.append(bytearray(data[pos:end]))
-        pos = end
+    body = data[len(header) :]
+    ends = _record_ends(body)
+    assert ends[-1] == len(body)
+    records = [bytearray(body[a:b]) for a, b in zip([0, *ends[:-1]], ends, strict=True)]
     rng = random.Random(20261122)
     damaged = []
     for record in rng.sample(records, 400):
