@@ -20,6 +20,7 @@ import sys
 import tempfile
 import time
 from pathlib import Path
+from typing import NamedTuple
 
 import numpy as np
 
@@ -29,17 +30,26 @@ ROOT = Path(__file__).resolve().parent.parent
 GRAINCLASS = [sys.executable, "-m", "grainclass"]
 
 
-def timed(command: str, env: dict | None = None) -> tuple[float, float]:
-    """Wall seconds and peak resident MB of a shell command (of its largest process)."""
+class Timing(NamedTuple):
+    seconds: float  # wall
+    peak_mb: float  # resident, of the largest process
+    user: float  # CPU seconds of all the command's processes
+    system: float
+
+
+def timed(command: str, env: dict | None = None) -> Timing:
+    """Wall seconds, peak resident MB (of the largest process) and CPU seconds of a shell
+    command."""
     fd, record = tempfile.mkstemp(suffix=".time")
     os.close(fd)
-    wrapped = f"/usr/bin/time -f '%M' -o {record} -a bash -c {_quote(command)}"
+    # bash waits for every process of the command: its children's times are all of them.
+    wrapped = f"/usr/bin/time -f '%M %U %S' -o {record} -a bash -c {_quote(command)}"
     start = time.perf_counter()
     subprocess.run(wrapped, shell=True, check=True, env=env, stderr=subprocess.DEVNULL)
     seconds = time.perf_counter() - start
-    peak_kb = max(int(line) for line in Path(record).read_text().split() if line.isdigit())
+    peak_kb, user, system = Path(record).read_text().split()[-3:]
     os.unlink(record)
-    return seconds, peak_kb / 1024
+    return Timing(seconds, int(peak_kb) / 1024, float(user), float(system))
 
 
 def timed_tree(command: str) -> tuple[float, float, float]:
@@ -88,6 +98,14 @@ def _quote(text: str) -> str:
     return "'" + text.replace("'", "'\\''") + "'"
 
 
+def _cpu(run: Timing) -> str:
+    return f"  cpu {run.user + run.system:6.2f} s (system {run.system:5.2f})"
+
+
+def _ratio(run: Timing, alone: Timing) -> str:
+    return f"{run.seconds:6.2f} s  x{run.seconds / alone.seconds:5.2f}{_cpu(run)}"
+
+
 def bench_pipelines(sizes: list[int], work: Path) -> None:
     plantri = find_plantri()
     gc = " ".join(GRAINCLASS)
@@ -98,18 +116,22 @@ def bench_pipelines(sizes: list[int], work: Path) -> None:
         "summarize": f"{gc} summarize - -q > /dev/null",
         "summarize --types": f"{gc} summarize - -q --types > /dev/null",
     }
-    print("(a) plantri N > /dev/null against plantri N | grainclass ...: wall s, ratio, peak MB")
+    print(
+        "(a) plantri N > /dev/null against plantri N | grainclass ...: wall s, ratio, "
+        "CPU s of all processes (system), peak MB"
+    )
     for command in runs.values():  # compile whatever the runs use before timing them
         subprocess.run(f"{plantri} 9 2>/dev/null | {command}", shell=True, check=True)
     for n in sizes:
-        alone, mem_alone = timed(f"{plantri} {n} > /dev/null 2>&1")
-        print(f"    n={n}: plantri alone {alone:6.2f} s ({mem_alone:.0f} MB)")
-        # The floor of any pipe: plantri writes 4 kB at a time, and the reader must wake up.
-        piped, _ = timed(f"{plantri} {n} 2>/dev/null | cat > /dev/null")
-        print(f"        | cat (the pipe alone)  {piped:6.2f} s  x{piped / alone:5.2f}")
+        alone = timed(f"{plantri} {n} > /dev/null 2>&1")
+        print(f"    n={n}:")
+        print(f"        plantri alone           {_ratio(alone, alone)}  {alone.peak_mb:5.0f} MB")
+        # What a pipe costs a reader that wakes for each of plantri's 4 kB writes.
+        piped = timed(f"{plantri} {n} 2>/dev/null | cat > /dev/null")
+        print(f"        | cat (the pipe alone)  {_ratio(piped, alone)}  {piped.peak_mb:5.0f} MB")
         for name, command in runs.items():
-            seconds, mem = timed(f"{plantri} {n} 2>/dev/null | {command}")
-            print(f"        | {name:21s} {seconds:6.2f} s  x{seconds / alone:5.2f}  {mem:5.0f} MB")
+            run = timed(f"{plantri} {n} 2>/dev/null | {command}")
+            print(f"        | {name:21s} {_ratio(run, alone)}  {run.peak_mb:5.0f} MB")
         out.unlink(missing_ok=True)
 
 
@@ -233,7 +255,7 @@ def bench_adjacency(work: Path) -> None:
     path = work / "grains-268402.txt"
     write_adjacency(path, 14, 268_402)
     gc = " ".join(GRAINCLASS)
-    seconds, mem = timed(f"{gc} classify {path} -o {work / 'adj.parquet'} -q")
+    seconds, mem, *_ = timed(f"{gc} classify {path} -o {work / 'adj.parquet'} -q")
     size = path.stat().st_size / 1e6
     print(f"(c) 268,402 grains of adjacency text ({size:.0f} MB): {seconds:.2f} s, {mem:.0f} MB")
 
@@ -244,12 +266,15 @@ def bench_startup(work: Path) -> None:
     cache = work / "numba-cache"
     shutil.rmtree(cache, ignore_errors=True)
     env = dict(os.environ, NUMBA_CACHE_DIR=str(cache))
-    first, _ = timed(f"{gc} classify {example} -o {work / 'e.parquet'} -q", env)
-    warm, _ = timed(f"{gc} classify {example} -o {work / 'e.parquet'} -q", env)
-    helps = [timed(f"{gc} --help > /dev/null")[0] for _ in range(3)]
+    first = timed(f"{gc} classify {example} -o {work / 'e.parquet'} -q", env)
+    warm = timed(f"{gc} classify {example} -o {work / 'e.parquet'} -q", env)
+    helps = [timed(f"{gc} --help > /dev/null").seconds for _ in range(3)]
     console = shutil.which("grainclass")
-    script = [timed(f"{console} --help > /dev/null")[0] for _ in range(3)] if console else []
-    print(f"(e) first run after installation (compiling): {first:.2f} s; warm run: {warm:.2f} s")
+    script = [timed(f"{console} --help > /dev/null").seconds for _ in range(3)] if console else []
+    print(
+        f"(e) first run after installation (compiling): {first.seconds:.2f} s; "
+        f"warm run: {warm.seconds:.2f} s"
+    )
     print(
         f"    grainclass --help: {min(script):.3f} s (console script), " if script else "    ",
         f"{min(helps):.3f} s (python -m grainclass)",
@@ -275,8 +300,8 @@ def bench_voronoi(work: Path, n: int = 268_402) -> None:
         f"(one plain pyvoro2.compute of the whole box, in process: {voro_only:.1f} s)"
     )
     out = work / "pv.parquet"
-    with_types, _ = timed(f"{gc} classify {text} -o {out} -q")
-    without, _ = timed(f"{gc} classify {text} -o {out} -q --no-types")
+    with_types = timed(f"{gc} classify {text} -o {out} -q").seconds
+    without = timed(f"{gc} classify {text} -o {out} -q --no-types").seconds
     print(
         f"    classify pv.txt: {with_types:.1f} s ({n / with_types:,.0f} grains/s) with Weinberg "
         f"vectors, {without:.1f} s ({n / without:,.0f} grains/s) with --no-types"
@@ -286,7 +311,7 @@ def bench_voronoi(work: Path, n: int = 268_402) -> None:
         seeds = work / "seeds"
         np.savetxt(seeds, np.column_stack([np.arange(n), points]), fmt="%d %.17g %.17g %.17g")
         command = f"{voro} -p -c '%i %v %F %t' 0 1024 0 1024 0 1024 {seeds}"
-        cli_seconds, cli_mem = timed(command)
+        cli_seconds, cli_mem, *_ = timed(command)
         print(f"    voro++ -p, same seeds: {cli_seconds:.1f} s, {cli_mem:.0f} MB")
         out = work / "v.parquet"
         # Compile the face-loop reader's kernels on a few cells first: not part of the timing.
@@ -294,7 +319,7 @@ def bench_voronoi(work: Path, n: int = 268_402) -> None:
         with open(f"{seeds}.vol") as cells:
             few.write_text("".join(itertools.islice(cells, 100)))
         subprocess.run(f"{gc} classify {few} -o {out} -q", shell=True, check=True)
-        classify_seconds, classify_mem = timed(f"{gc} classify {seeds}.vol -o {out} -q")
+        classify_seconds, classify_mem, *_ = timed(f"{gc} classify {seeds}.vol -o {out} -q")
         print(f"    grainclass classify of that: {classify_seconds:.1f} s, {classify_mem:.0f} MB")
     else:
         print("    (voro++ not installed: apt-get install voro++ to compare)")
@@ -312,11 +337,11 @@ def bench_census(sizes: list[int], parts: int, work: Path) -> None:
     print(f"(g) census, {parts} parts per n, {cores} workers, against plantri on the same parts:")
     for n in sizes:
         indices = " ".join(str(i) for i in range(parts))
-        alone, _ = timed(
+        alone = timed(
             f"printf '%s\\n' {indices} | xargs -P {cores} -I@ {plantri} -h {n} @/{parts} "
             "> /dev/null 2>&1"
-        )
-        whole, _ = timed(f"{plantri} -h {n} > /dev/null 2>&1")
+        ).seconds
+        whole = timed(f"{plantri} -h {n} > /dev/null 2>&1").seconds
         command = f"{gc} census {n} --parts {parts} -o {work / f'census-{n}'} -q > /dev/null"
         seconds, total, worker = timed_tree(command)
         print(

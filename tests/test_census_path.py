@@ -184,6 +184,48 @@ def test_batches_keep_their_bytes_while_buffers_are_reused(plantri_output, monke
     np.testing.assert_array_equal(np.concatenate(streamed), whole.class_code)
 
 
+def test_a_pipe_written_in_small_pieces_reads_as_the_whole_stream(plantri_output, monkeypatch):
+    # From a pipe, reads that find it nearly empty wait for more to gather (readers/pipes.py).
+    # A writer that sends 1 to 4,000 bytes at a time, pausing now and then, across records and
+    # across the reader's blocks, must give the records a file gives, and the last record, cut
+    # off, must still come out as an unreadable grain.
+    import threading
+    import time
+
+    import grainclass.readers.planar_code as reader
+    from grainclass.readers.pipes import is_pipe
+
+    data = plantri_output(10).read_bytes()[:-5]
+    monkeypatch.setattr(reader, "BLOCK_BYTES", 3000)
+    read_end, write_end = os.pipe()
+    pieces = random.Random(3)
+
+    def write() -> None:
+        with os.fdopen(write_end, "wb", buffering=0) as sink:
+            at = 0
+            while at < len(data):
+                size = pieces.choice([1, 7, 59, 700, 4000])
+                sink.write(data[at : at + size])
+                at += size
+                if pieces.random() < 0.1:
+                    time.sleep(0.005)
+
+    writer = threading.Thread(target=write)
+    writer.start()
+    with os.fdopen(read_end, "rb") as stream:
+        assert is_pipe(stream)
+        piped = list(read_planar_code(stream, "x", 7, raw=True))
+    writer.join()
+    whole = list(read_planar_code(io.BytesIO(data), "x", 7, raw=True))
+    assert [type(b) for b in piped] == [type(b) for b in whole]
+    assert [len(b) for b in piped] == [len(b) for b in whole]
+    for a, b in zip(piped[:-1], whole[:-1], strict=True):
+        assert a.buf.tobytes() == b.buf.tobytes()
+        assert a.first_record == b.first_record
+    assert tally_batch(piped[-1]).counts["status"].tolist() == ["invalid"]
+    assert not is_pipe(io.BytesIO(data))
+
+
 def test_group_rows_packs_or_compares_whole_rows():
     rows = np.array([[1, 2], [0, 5], [1, 2], [0, 5], [3, 3]])
     for scale in (1, 2**40):  # 2**40: too wide to pack two columns into one int64
@@ -210,7 +252,7 @@ def test_group_rows_hash_table_grows_past_its_first_size():
 def test_pipes_are_read_with_a_larger_buffer(tmp_path):
     import fcntl
 
-    from grainclass.readers import PIPE_BYTES, enlarge_pipe
+    from grainclass.readers.pipes import PIPE_BYTES, enlarge_pipe
 
     read_end, write_end = os.pipe()
     with os.fdopen(read_end, "rb") as reader, os.fdopen(write_end, "wb"):

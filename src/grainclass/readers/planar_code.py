@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import sys
+import time
 from collections.abc import Iterator
 from dataclasses import dataclass
 from typing import BinaryIO
@@ -10,6 +11,7 @@ from typing import BinaryIO
 import numpy as np
 
 from grainclass.batch import GrainBatch
+from grainclass.readers.pipes import GATHER_SECONDS, SHORT_READ_BYTES, is_pipe
 
 HEADERS = {
     b">>planar_code<<": False,
@@ -71,6 +73,7 @@ def read_planar_code(
     from grainclass.arrow import decimal_strings
 
     big_endian, head = _read_header(stream, stream.read(32))
+    pipe = is_pipe(stream)
     buffers = _BufferPool()
     buffer = np.frombuffer(head, np.uint8)  # bytes not yet parsed: buffer[pos:]
     at_end, pos = False, 0
@@ -80,7 +83,7 @@ def read_planar_code(
         # Read on when the rest may not hold a batch: with small batches, the bytes copied to
         # the new buffer stay small too.
         if not at_end and len(buffer) - pos < min(last_chunk, BLOCK_BYTES):
-            buffer, at_end = buffers.refill(stream, buffer[pos:])
+            buffer, at_end = buffers.refill(stream, buffer[pos:], pipe)
             pos = 0
         buf = buffer[pos:]
         buf.flags.writeable = False  # the batches share it; one numba signature for all callers
@@ -91,7 +94,7 @@ def read_planar_code(
                 if len(buf):
                     yield _cut_off(source, record, len(buf))
                 return
-            buffer, at_end = buffers.refill(stream, buf)  # a record longer than a block
+            buffer, at_end = buffers.refill(stream, buf, pipe)  # a record longer than a block
             pos = 0
             continue
         if raw:
@@ -137,18 +140,26 @@ class _BufferPool:
             self._owners.append(owner)
         return owner
 
-    def refill(self, stream: BinaryIO, rest: np.ndarray) -> tuple[np.ndarray, bool]:
-        """``rest`` followed by up to BLOCK_BYTES more of the stream, and whether it has ended."""
+    def refill(self, stream: BinaryIO, rest: np.ndarray, pipe: bool) -> tuple[np.ndarray, bool]:
+        """``rest`` followed by up to BLOCK_BYTES more of the stream, and whether it has ended.
+
+        From a ``pipe``, a read that finds it nearly empty is followed by a short wait, so that
+        the next read takes what the writer wrote meanwhile in one piece (see
+        :mod:`grainclass.readers.pipes`).
+        """
         owner = self._take(len(rest) + BLOCK_BYTES)
         owner[: len(rest)] = rest
         filled = len(rest)
+        end = len(rest) + BLOCK_BYTES
         with memoryview(owner) as view:
-            while filled < len(rest) + BLOCK_BYTES:
-                got = stream.readinto(view[filled : len(rest) + BLOCK_BYTES])
+            while filled < end:
+                got = stream.readinto1(view[filled:end])  # one system call at most
                 if not got:
                     break
                 filled += got
-        return owner[:filled], filled < len(rest) + BLOCK_BYTES
+                if pipe and got < SHORT_READ_BYTES:
+                    time.sleep(GATHER_SECONDS)
+        return owner[:filled], filled < end
 
 
 def _cut_off(source: str, record: int, n_bytes: int) -> GrainBatch:
