@@ -151,14 +151,17 @@ def test_papers_grains_a_b_c(plantri_output):
 @given(
     st.lists(
         st.one_of(
-            st.none(), st.lists(st.integers(1, 12_345), min_size=1, max_size=12)
-        ),  # None: a grain that is not ok
+            st.none(),  # a grain that is not ok
+            st.lists(st.integers(1, 99), min_size=1, max_size=40),
+            st.lists(st.integers(1, 12_345), min_size=1, max_size=12),
+        ),
         max_size=8,
     )
 )
 @settings(max_examples=200, deadline=None)
 def test_code_strings_are_written_as_python_writes_them(grains):
-    # Entries of 1 to 5 digits: below 1000 they are written by selects, above by a loop.
+    # Entries of 1 to 5 digits: codes whose entries all have one or two digits are written by
+    # selects, others by a loop per digit.
     from grainclass._kernels.columns import _code_strings
 
     ok = np.array([g is not None for g in grains], bool)
