@@ -193,7 +193,7 @@ def test_a_pipe_written_in_small_pieces_reads_as_the_whole_stream(plantri_output
     import time
 
     import grainclass.readers.planar_code as reader
-    from grainclass.readers.pipes import is_pipe
+    from grainclass.readers.pipes import gathers_reads
 
     data = plantri_output(10).read_bytes()[:-5]
     monkeypatch.setattr(reader, "BLOCK_BYTES", 3000)
@@ -213,7 +213,7 @@ def test_a_pipe_written_in_small_pieces_reads_as_the_whole_stream(plantri_output
     writer = threading.Thread(target=write)
     writer.start()
     with os.fdopen(read_end, "rb") as stream:
-        assert is_pipe(stream)
+        assert gathers_reads(stream) == sys.platform.startswith("linux")
         piped = list(read_planar_code(stream, "x", 7, raw=True))
     writer.join()
     whole = list(read_planar_code(io.BytesIO(data), "x", 7, raw=True))
@@ -223,7 +223,7 @@ def test_a_pipe_written_in_small_pieces_reads_as_the_whole_stream(plantri_output
         assert a.buf.tobytes() == b.buf.tobytes()
         assert a.first_record == b.first_record
     assert tally_batch(piped[-1]).counts["status"].tolist() == ["invalid"]
-    assert not is_pipe(io.BytesIO(data))
+    assert not gathers_reads(io.BytesIO(data))
 
 
 def test_group_rows_packs_or_compares_whole_rows():
@@ -252,7 +252,7 @@ def test_group_rows_hash_table_grows_past_its_first_size():
 def test_pipes_are_read_with_a_larger_buffer(tmp_path):
     import fcntl
 
-    from grainclass.readers.pipes import PIPE_BYTES, enlarge_pipe
+    from grainclass.readers.pipes import PIPE_BYTES, enlarge_pipe, gathers_reads
 
     read_end, write_end = os.pipe()
     with os.fdopen(read_end, "rb") as reader, os.fdopen(write_end, "wb"):
@@ -264,3 +264,19 @@ def test_pipes_are_read_with_a_larger_buffer(tmp_path):
     path.write_bytes(b"")
     with path.open("rb") as regular:
         enlarge_pipe(regular)  # not a pipe: left alone, no error
+        assert not gathers_reads(regular)
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="F_SETPIPE_SZ is Linux's")
+def test_reads_wait_to_gather_only_from_a_pipe_that_holds_enough(monkeypatch):
+    # A 64 kB pipe fills long before a 2 ms wait ends: waiting would hold the writer up.
+    import grainclass.readers.pipes as pipes
+
+    read_end, write_end = os.pipe()
+    with os.fdopen(read_end, "rb") as reader, os.fdopen(write_end, "wb"):
+        with monkeypatch.context() as refused:
+            refused.setattr(pipes, "enlarge_pipe", lambda stream: None)
+            assert pipes.pipe_bytes(reader) < pipes.PIPE_BYTES
+            assert not pipes.gathers_reads(reader)
+        assert pipes.gathers_reads(reader)
+        assert pipes.pipe_bytes(reader) == pipes.PIPE_BYTES

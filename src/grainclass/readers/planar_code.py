@@ -11,7 +11,7 @@ from typing import BinaryIO
 import numpy as np
 
 from grainclass.batch import GrainBatch
-from grainclass.readers.pipes import GATHER_SECONDS, SHORT_READ_BYTES, is_pipe
+from grainclass.readers.pipes import GATHER_SECONDS, SHORT_READ_BYTES, gathers_reads
 
 HEADERS = {
     b">>planar_code<<": False,
@@ -73,7 +73,7 @@ def read_planar_code(
     from grainclass.arrow import decimal_strings
 
     big_endian, head = _read_header(stream, stream.read(32))
-    pipe = is_pipe(stream)
+    gather = gathers_reads(stream)
     buffers = _BufferPool()
     buffer = np.frombuffer(head, np.uint8)  # bytes not yet parsed: buffer[pos:]
     at_end, pos = False, 0
@@ -83,7 +83,7 @@ def read_planar_code(
         # Read on when the rest may not hold a batch: with small batches, the bytes copied to
         # the new buffer stay small too.
         if not at_end and len(buffer) - pos < min(last_chunk, BLOCK_BYTES):
-            buffer, at_end = buffers.refill(stream, buffer[pos:], pipe)
+            buffer, at_end = buffers.refill(stream, buffer[pos:], gather)
             pos = 0
         buf = buffer[pos:]
         buf.flags.writeable = False  # the batches share it; one numba signature for all callers
@@ -94,7 +94,7 @@ def read_planar_code(
                 if len(buf):
                     yield _cut_off(source, record, len(buf))
                 return
-            buffer, at_end = buffers.refill(stream, buf, pipe)  # a record longer than a block
+            buffer, at_end = buffers.refill(stream, buf, gather)  # a record longer than a block
             pos = 0
             continue
         if raw:
@@ -140,11 +140,11 @@ class _BufferPool:
             self._owners.append(owner)
         return owner
 
-    def refill(self, stream: BinaryIO, rest: np.ndarray, pipe: bool) -> tuple[np.ndarray, bool]:
+    def refill(self, stream: BinaryIO, rest: np.ndarray, gather: bool) -> tuple[np.ndarray, bool]:
         """``rest`` followed by up to BLOCK_BYTES more of the stream, and whether it has ended.
 
-        From a ``pipe``, a read that finds it nearly empty is followed by a short wait, so that
-        the next read takes what the writer wrote meanwhile in one piece (see
+        With ``gather`` (a large pipe), a read that finds it nearly empty is followed by a short
+        wait, so that the next read takes what the writer wrote meanwhile in one piece (see
         :mod:`grainclass.readers.pipes`).
         """
         owner = self._take(len(rest) + BLOCK_BYTES)
@@ -157,7 +157,7 @@ class _BufferPool:
                 if not got:
                     break
                 filled += got
-                if pipe and got < SHORT_READ_BYTES:
+                if gather and got < SHORT_READ_BYTES:
                     time.sleep(GATHER_SECONDS)
         return owner[:filled], filled < end
 
