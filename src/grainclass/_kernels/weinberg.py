@@ -88,24 +88,30 @@ def _weinberg(n, rot, off, sigma, faces, best, stamp, gen, label, used, code, wa
     polytope share at most an edge, so those labels are new, and a smaller face writes its 1 or
     2 where a larger one writes a new label: only starts with the least (s, m, q) can give the
     smallest code. That leaves 1.4 walks a grain at n = 16, where 1.0 give the smallest code:
-    each is walked to its end or until it exceeds the best so far.
+    each is walked to its end or until it exceeds the best so far. The least s is found first,
+    so that only the edges of the smallest faces are looked at (a fifth of the time went on
+    weighing every start).
     """
     t = 2 * n - 4
     length = 3 * t + 1  # 2E + 1 with E = 3t/2
     sizes = t + 1  # a face has at most t corners
+    smallest = faces[0]
+    for v in range(1, n):
+        smallest = min(smallest, faces[v])
     least = -1
     count = 0
-    for a in range(n):
-        for i in range(off[a], off[a + 1]):
-            # Corner (a, b, c) left along a -> b: the edge's faces are a (on its left) and b,
-            # the opposite face is c.
-            b = rot[i]
-            c = sigma[a * n + b]
-            for turn in (-1, 1):
-                # Turning right, the walk goes round the face right of its first edge (b),
-                # turning left round the face left of it (a).
-                side, other = (b, a) if turn < 0 else (a, b)
-                key = (faces[side] * sizes + faces[c]) * sizes + faces[other]
+    for v in range(n):
+        if faces[v] != smallest:
+            continue
+        # The walks that go round face v first: along v -> x turning left (face v is left of
+        # that edge), along x -> v turning right (face v is right of it). Either way the other
+        # face of the first edge is x, and the opposite face is the third face at the start.
+        for i in range(off[v], off[v + 1]):
+            x = rot[i]
+            for turn in (1, -1):
+                a = v if turn > 0 else x
+                b = x if turn > 0 else v
+                key = faces[sigma[a * n + b]] * sizes + faces[x]
                 if least < 0 or key < least:
                     least, count = key, 0
                 if key == least:
