@@ -23,14 +23,16 @@ def rotation_lists(faces: set[tuple[int, int, int]], n: int) -> list[list[int]]:
 
 
 @st.composite
-def triangulations(draw, max_vertices: int = 16, max_flips: int = 40) -> list[list[int]]:
+def triangulations(
+    draw, max_vertices: int = 16, max_flips: int = 40, min_vertices: int = 4
+) -> list[list[int]]:
     """A random triangulation: the tetrahedron, random stackings, then random edge flips.
 
     Stacking alone gives stacked triangulations; flips reach every triangulation with the same
     number of vertices (Wagner), so all classes turn up.
     """
     faces = {(0, 1, 2), (0, 2, 3), (0, 3, 1), (1, 3, 2)}
-    n = draw(st.integers(4, max_vertices))
+    n = draw(st.integers(min_vertices, max_vertices))
     for v in range(4, n):
         a, b, c = draw(st.sampled_from(sorted(faces)))
         faces.remove((a, b, c))

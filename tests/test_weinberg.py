@@ -138,6 +138,23 @@ def test_relabelling_keeps_and_mirroring_flips_chirality(lists, rng):
     assert mirrored["chirality"] == -original["chirality"]
 
 
+@settings(max_examples=6, deadline=None)
+@given(
+    triangulations(min_vertices=55, max_vertices=90, max_flips=150),
+    st.randoms(use_true_random=False),
+)
+def test_large_grains_agree_with_brute_force(lists, rng):
+    # 55 faces or more: labels of three digits (written by the loop), and beyond 64 faces the
+    # general path; lists turned at random make the rotations be recovered first.
+    mixed = [list(reversed(nbrs)) if rng.random() < 0.5 else nbrs for nbrs in lists]
+    (row,) = _rows([mixed])
+    code, symmetry, chirality = reference.weinberg(lists)
+    assert max(code) >= 100
+    assert row["weinberg"] == "(" + ",".join(map(str, code)) + ")"
+    assert row["chirality"] == (chirality if mixed[0] == lists[0] else -chirality)  # face 0's sense
+    assert row["symmetry"] == symmetry
+
+
 def test_papers_grains_a_b_c(plantri_output):
     # The paper's Fig. 15: three 10-face flag grains with p-vector (0,4,4,2). A has two belts of
     # type 3:4:3 and symmetry order 8, B one and order 2, C none and order 2. By the definition
