@@ -276,7 +276,7 @@ def bench_startup(work: Path) -> None:
         f"warm run: {warm.seconds:.2f} s"
     )
     print(
-        f"    grainclass --help: {min(script):.3f} s (console script), " if script else "    ",
+        "    grainclass --help: " + (f"{min(script):.3f} s (console script), " if script else ""),
         f"{min(helps):.3f} s (python -m grainclass)",
         sep="",
     )
