@@ -79,7 +79,7 @@ def _walk(n, sigma, length, a, b, turn, best, state, stamp, gen, label, used, co
 def _weinberg(n, rot, off, sigma, faces, best, stamp, gen, label, used, code, walks):
     """Canonical code into ``best``; returns (symmetry, chirality, the last stamp used).
     ``rot[off[v]:off[v + 1]]`` is face v's counter-clockwise list, ``sigma`` its table and
-    ``faces[v]`` its size; ``walks`` (int64[6n - 12, 3]) is scratch.
+    ``faces[v]`` its size; ``walks`` (int64[12n - 24, 3], two per dart) is scratch.
 
     The three faces at the start corner fix how a walk's code begins. It goes round the face on
     its turning side first (s sides: 1, 2, ..., s, then 1 again), back one edge (s), round the
