@@ -154,6 +154,20 @@ def test_boundary_grains_are_left_out_of_summaries_unless_asked(tmp_path):
     assert json.loads(both.stdout)["classes"][-1]["all"] == 3
 
 
+def test_types_of_boundary_grains_are_left_out_unless_asked(tmp_path):
+    # Distinct types are counted as the grains are: the cut tetrahedron's only with it.
+    cube = "1 2 3 4;0 4 5 2;0 1 5 3;0 2 5 4;0 3 5 1;1 4 3 2"
+    tetrahedron = "1 2 3;0 3 2;0 1 3;0 2 1"
+    path = tmp_path / "cut.txt"
+    path.write_text(f"a\t{cube}\tboundary=0\nb\t{cube}\nc\t{tetrahedron}\tboundary=1\n")
+    runner = CliRunner()
+    for flags, types in (([], 1), (["--include-boundary"], 2)):
+        args = ["summarize", str(path), "--types", "--format", "json", *flags]
+        result = runner.invoke(cli, args)
+        assert result.exit_code == 0
+        assert json.loads(result.stdout)["headline"]["types"] == types
+
+
 def test_geometry_table_gives_mean_q_and_its_standard_error(tmp_path):
     cube = "1 2 3 4;0 4 5 2;0 1 5 3;0 2 5 4;0 3 5 1;1 4 3 2"
     path = tmp_path / "q.txt"

@@ -205,15 +205,9 @@ def grain_codes(batch: GrainBatch | PlanarCodeRecords) -> GrainCodes:
     planar_code records are classified straight from their bytes (the census path).
     """
     from grainclass._kernels.batch import _classify_records
-    from grainclass._kernels.columns import _triangle_counts
 
     if not isinstance(batch, PlanarCodeRecords):
-        out = _classify_csr(batch, MAX_BITSET_FACES, strings=False)
-        status, family, fundamental = out.status, out.family, out.fundamental
-        n_trees, split = out.n_trees, out.belts[:, 0]
-        triangles = _triangle_counts(batch.face_offsets, batch.nbr_offsets, status == codes.OK)
-        n_faces = np.where(out.parsed, batch.n_faces, -1)
-        return _grain_codes(n_faces, status, family, fundamental, n_trees, split, triangles)
+        return _csr_grain_codes(batch, _classify_csr(batch, MAX_BITSET_FACES, strings=False))
     g = len(batch)
     n_faces = np.zeros(g, np.int64)
     triangles = np.zeros(g, np.int32)
@@ -243,6 +237,26 @@ def grain_codes(batch: GrainBatch | PlanarCodeRecords) -> GrainCodes:
         for name in GrainCodes.__dataclass_fields__:
             getattr(codes_, name)[pending] = getattr(general, name)
     return codes_
+
+
+def grain_codes_and_types(batch: GrainBatch) -> tuple[GrainCodes, pa.Array]:
+    """:func:`grain_codes` of a CSR batch, with the Weinberg vectors ``classify`` would write
+    (null where a grain is not ok): what ``summarize --types`` counts, without the rest of the
+    per-grain table."""
+    out = _classify_csr(batch, MAX_BITSET_FACES, strings=False)
+    return _csr_grain_codes(batch, out), _weinberg_strings(_types(batch, out, True))
+
+
+def _csr_grain_codes(batch: GrainBatch, out: _Classified) -> GrainCodes:
+    from grainclass._kernels.columns import _triangle_counts
+
+    ok = out.status == codes.OK
+    triangles = _triangle_counts(batch.face_offsets, batch.nbr_offsets, ok)
+    n_faces = np.where(out.parsed, batch.n_faces, -1)
+    split = out.belts[:, 0]
+    return _grain_codes(
+        n_faces, out.status, out.family, out.fundamental, out.n_trees, split, triangles
+    )
 
 
 def _grain_codes(n_faces, status, family, fundamental, n_trees, split, triangles) -> GrainCodes:
@@ -347,9 +361,17 @@ def _types(batch: GrainBatch, out: _Classified, types: bool) -> _Types:
     return result
 
 
+def _weinberg_strings(types: _Types) -> pa.Array:
+    """The Weinberg vectors as VoroTop writes them, null where none was computed."""
+    from grainclass._kernels.columns import _code_strings
+
+    computed = types.computed
+    return string_array(*_code_strings(types.weinberg, types.code_offsets, computed), computed)
+
+
 def _table(batch: GrainBatch, out: _Classified, types: _Types) -> pa.Table:
     """The per-grain table of :func:`classify` from the kernels' outputs."""
-    from grainclass._kernels.columns import _code_strings, _compact, _p_vectors
+    from grainclass._kernels.columns import _compact, _p_vectors
 
     g = len(batch)
     n_faces = batch.n_faces
@@ -409,9 +431,7 @@ def _table(batch: GrainBatch, out: _Classified, types: _Types) -> pa.Table:
         schema.SPLIT_M: numbers(n_faces - 4 - split_k, pa.int32(), is_flag),
         schema.BELTS4: numbers(belts[:, 1], pa.int32(), is_flag),
         schema.PENALTY: numbers(n_faces * belts[:, 2], pa.int64(), is_flag),
-        schema.WEINBERG: string_array(
-            *_code_strings(types.weinberg, types.code_offsets, with_type), with_type
-        ),
+        schema.WEINBERG: _weinberg_strings(types),
         schema.SYMMETRY: numbers(types.symmetry, pa.int32(), with_type),
         schema.CHIRALITY: numbers(types.chirality, pa.int8(), with_type),
         schema.VOLUME: _floats(volume, g),

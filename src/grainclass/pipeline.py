@@ -11,6 +11,7 @@ import sys
 import threading
 import time
 from collections.abc import Iterable, Iterator, Sequence
+from contextlib import nullcontext
 from typing import TYPE_CHECKING, TypeVar
 
 import pyarrow as pa
@@ -121,24 +122,25 @@ def tallies(
     include_boundary: bool = False,
 ) -> Iterator[Tally]:
     """What ``summarize`` counts, batch by batch: classified Parquet files are tallied from their
-    rows; other inputs are classified on the fly, for counting only unless ``types`` asks for
-    the Weinberg vectors (planar_code straight from its bytes)."""
+    rows; other inputs are classified on the fly for counting only (planar_code straight from
+    its bytes), with the Weinberg vectors if ``types`` asks for them, never into per-grain
+    tables."""
+    from grainclass.parallel import get_jobs
     from grainclass.parquet import iter_grain_tables
     from grainclass.summary import COLUMNS, tally_batch, tally_table
+    from grainclass.warmup import compiling_from_both_ends
 
     for path in paths:
         if is_parquet(path):
-            tables: Iterable[pa.Table] = iter_grain_tables(path, COLUMNS)
-        elif types:
-            tables = classified_tables([path], format, chunk_size, triple_edges, types)
-        else:
-            batches = read_dataset([path], format, chunk_size, triple_edges, raw_planar_code=True)
-            yield from map_ordered(
-                lambda batch: tally_batch(batch, include_boundary), prefetch(batches)
-            )
+            for table in iter_grain_tables(path, COLUMNS):
+                yield tally_table(table, include_boundary)
             continue
-        for table in tables:
-            yield tally_table(table.select(COLUMNS), include_boundary)
+        # The Weinberg walks need the CSR lists; counting alone reads planar_code as bytes.
+        batches = read_dataset([path], format, chunk_size, triple_edges, raw_planar_code=not types)
+        with compiling_from_both_ends(get_jobs(), types) if types else nullcontext():
+            yield from map_ordered(
+                lambda batch: tally_batch(batch, include_boundary, types), prefetch(batches)
+            )
 
 
 class Progress:

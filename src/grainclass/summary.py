@@ -104,7 +104,7 @@ def tally_table(grains: pa.Table, include_boundary: bool = False) -> Tally:
         cut = pc.fill_null(grains.column(schema.BOUNDARY), False)
         excluded = pc.sum(cut).as_py() or 0
         grains = grains.filter(pc.invert(cut))
-    return Tally(tally(grains), len(grains), type_hashes(grains), excluded)
+    return Tally(tally(grains), len(grains), type_hashes(grains.column(schema.WEINBERG)), excluded)
 
 
 def _names(codes: np.ndarray, names: tuple[str, ...]) -> np.ndarray:
@@ -138,12 +138,20 @@ def group_rows(columns: Sequence[np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
     return first[order], rank[inverse.reshape(-1)]
 
 
-def tally_batch(batch: GrainBatch | PlanarCodeRecords, include_boundary: bool = False) -> Tally:
+def tally_batch(
+    batch: GrainBatch | PlanarCodeRecords, include_boundary: bool = False, types: bool = False
+) -> Tally:
     """A :class:`Tally` of raw grains, classified for counting only (no per-grain rows, no
-    strings, no types): the census path of ``summarize``."""
-    from grainclass.classification import grain_codes
+    truncation-tree strings): the census path of ``summarize``. With ``types`` (a CSR batch
+    only) the Weinberg vectors are computed too, for the distinct types."""
+    from grainclass.arrow import booleans
+    from grainclass.classification import grain_codes, grain_codes_and_types
 
-    codes = grain_codes(batch)
+    weinberg = None
+    if types:
+        codes, weinberg = grain_codes_and_types(batch)
+    else:
+        codes = grain_codes(batch)
     volume, area = getattr(batch, "volume", None), getattr(batch, "area", None)
     boundary = getattr(batch, "boundary", None)
     keep = None
@@ -161,6 +169,7 @@ def tally_batch(batch: GrainBatch | PlanarCodeRecords, include_boundary: bool = 
         keys = [column[keep] for column in keys]
         triangles = triangles[keep]
         q = None if q is None else q[keep]
+        weinberg = None if weinberg is None else weinberg.filter(booleans(keep))
     # Codes shifted to be >= 0 (-1 is null), one row per kept grain.
     shifted = [keys[0].astype(np.int64), *(np.add(c, 1, dtype=np.int64) for c in keys[1:])]
     first, group = group_rows(shifted)
@@ -193,7 +202,8 @@ def tally_batch(batch: GrainBatch | PlanarCodeRecords, include_boundary: bool = 
             Q_SQUARES: q_squares,
         }
     )
-    return Tally(counts, kept, boundary_excluded=len(batch) - kept)
+    hashes = np.zeros(0, np.uint64) if weinberg is None else type_hashes(weinberg)
+    return Tally(counts, kept, hashes, boundary_excluded=len(batch) - kept)
 
 
 def _distinct(hashes: list[np.ndarray]) -> int | None:
@@ -225,11 +235,13 @@ def _ok(counts: pd.DataFrame) -> pd.DataFrame:
     return counts[counts[schema.STATUS] == "ok"]
 
 
-def type_hashes(grains: pa.Table) -> np.ndarray:
-    """64-bit hashes of the distinct Weinberg codes of a table (uint64)."""
+def type_hashes(weinberg: pa.Array | pa.ChunkedArray) -> np.ndarray:
+    """64-bit hashes of the distinct Weinberg codes of a column (uint64)."""
     from grainclass._kernels.columns import _fnv1a
 
-    codes = pc.unique(grains.column(schema.WEINBERG).combine_chunks().drop_null())
+    if isinstance(weinberg, pa.ChunkedArray):
+        weinberg = weinberg.combine_chunks()
+    codes = pc.unique(weinberg.drop_null())
     if not len(codes):
         return np.zeros(0, np.uint64)
     codes = codes.cast(pa.string())
