@@ -13,6 +13,7 @@ import numpy as np
 import pyarrow as pa
 
 from grainclass._kernels.columns import _decimal_strings, _strings_from_codes
+from grainclass.batch import offsets_from_counts
 
 
 def string_array(
@@ -64,8 +65,7 @@ def strings(values: Sequence[str | None]) -> pa.Array:
         encoded = [value.encode() for value in values]
         data = b"".join(encoded)
         lengths = np.fromiter(map(len, encoded), np.int64, len(values))
-    offsets = np.zeros(len(values) + 1, np.int64)
-    np.cumsum(lengths, out=offsets[1:])
+    offsets = offsets_from_counts(lengths)
     if offsets[-1] > np.iinfo(np.int32).max:
         raise ValueError("the strings of one batch exceed 2 GB: use a smaller chunk size")
     return string_array(offsets.astype(np.int32), np.frombuffer(data, np.uint8), valid)
@@ -75,7 +75,7 @@ def strings_from_codes(codes: np.ndarray, names: tuple[str, ...]) -> pa.Array:
     """``names[code]`` per row, null where the code is negative."""
     encoded = [name.encode() for name in names]
     table = np.frombuffer(b"".join(encoded), np.uint8)
-    name_offsets = np.concatenate([[0], np.cumsum([len(e) for e in encoded])]).astype(np.int64)
+    name_offsets = offsets_from_counts([len(e) for e in encoded])
     offsets, data = _strings_from_codes(np.asarray(codes, np.int64), table, name_offsets)
     return string_array(offsets, data, codes >= 0)
 

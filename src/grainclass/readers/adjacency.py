@@ -13,7 +13,7 @@ from collections.abc import Iterable, Iterator
 
 import numpy as np
 
-from grainclass.batch import GrainBatch
+from grainclass.batch import GrainBatch, offsets_from_counts, run_indices
 
 FLOAT_KEYS = ("volume", "area")
 BOOLEANS = {"1": 1, "true": 1, "yes": 1, "0": 0, "false": 0, "no": 0}
@@ -104,8 +104,8 @@ class _Chunk:
             grain_id=self.grain_id,
             location=np.asarray(self.location, np.int64),
             location_kind="line",
-            face_offsets=np.concatenate([[0], np.cumsum(n_faces)]),
-            nbr_offsets=np.concatenate([[0], np.cumsum(degrees)]),
+            face_offsets=offsets_from_counts(n_faces),
+            nbr_offsets=offsets_from_counts(degrees),
             neighbors=neighbors,
             parse_errors=self.parse_errors,
             volume=np.asarray(self.floats["volume"], np.float64),
@@ -129,8 +129,7 @@ def _plain_batch(raw_lines: list[bytes], first_line: int, source: str) -> GrainB
     if _plain_lines(buf, id_starts, id_ends, faces_starts, faces_ends) != g:
         return None
     lengths = id_ends - id_starts
-    id_offsets = np.zeros(g + 1, np.int64)
-    np.cumsum(lengths, out=id_offsets[1:])
+    id_offsets = offsets_from_counts(lengths)
     if id_offsets[-1] > np.iinfo(np.int32).max:  # past Arrow's string offsets: read line by line
         return None
     n_faces, degrees, neighbors, bad = parse_face_spans(buf, faces_starts, faces_ends)
@@ -138,16 +137,15 @@ def _plain_batch(raw_lines: list[bytes], first_line: int, source: str) -> GrainB
         int(i): _faces_error(buf[faces_starts[i] : faces_ends[i]].tobytes().decode())
         for i in np.flatnonzero(bad)
     }
-    within = np.arange(id_offsets[-1]) - np.repeat(id_offsets[:-1], lengths)
-    id_bytes = buf[np.repeat(id_starts, lengths) + within]
+    id_bytes = buf[run_indices(id_starts, lengths)]
     volume = np.full(g, np.nan)
     return GrainBatch(
         source=source,
         grain_id=string_array(id_offsets.astype(np.int32), id_bytes),
         location=np.arange(first_line, first_line + g, dtype=np.int64),
         location_kind="line",
-        face_offsets=np.concatenate([[0], np.cumsum(n_faces)]),
-        nbr_offsets=np.concatenate([[0], np.cumsum(degrees)]),
+        face_offsets=offsets_from_counts(n_faces),
+        nbr_offsets=offsets_from_counts(degrees),
         neighbors=neighbors,
         parse_errors=parse_errors,
         volume=volume,
