@@ -76,6 +76,7 @@ def read_planar_code(
     gather = gathers_reads(stream)
     buffers = _BufferPool()
     buffer = np.frombuffer(head, np.uint8)  # bytes not yet parsed: buffer[pos:]
+    words = _words(buffer)
     at_end, pos = False, 0
     last_chunk = BLOCK_BYTES  # bytes the last batch took
     record = 1
@@ -84,18 +85,20 @@ def read_planar_code(
         # the new buffer stay small too.
         if not at_end and len(buffer) - pos < min(last_chunk, BLOCK_BYTES):
             buffer, at_end = buffers.refill(stream, buffer[pos:], gather)
-            pos = 0
+            words, pos = _words(buffer), 0
         buf = buffer[pos:]
         buf.flags.writeable = False  # the batches share it; one numba signature for all callers
         starts = np.empty(chunk_size + 1, np.int64)
-        records, vertices, entries, consumed = _scan(buf, big_endian, chunk_size, starts)
+        records, vertices, entries, consumed = _scan(
+            buf, words, pos, big_endian, chunk_size, starts
+        )
         if records == 0:
             if at_end:
                 if len(buf):
                     yield _cut_off(source, record, len(buf))
                 return
             buffer, at_end = buffers.refill(stream, buf, gather)  # a record longer than a block
-            pos = 0
+            words, pos = _words(buffer), 0
             continue
         if raw:
             yield PlanarCodeRecords(
@@ -118,6 +121,16 @@ def read_planar_code(
         record += records
         pos += consumed
         last_chunk = consumed
+
+
+def _words(buffer: np.ndarray) -> np.ndarray:
+    """``buffer``'s bytes as little-endian uint64 words, for the scan to count zeros eight at a
+    time; none if they cannot be read so (a big-endian machine, a buffer off an 8-byte
+    boundary: the first bytes read, as a ``bytes`` object)."""
+    aligned = sys.byteorder == "little" and buffer.ctypes.data % 8 == 0
+    words = buffer[: len(buffer) // 8 * 8].view(np.uint64) if aligned else np.empty(0, np.uint64)
+    words.flags.writeable = False  # as the bytes are: one numba signature
+    return words
 
 
 class _BufferPool:
