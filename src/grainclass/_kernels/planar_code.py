@@ -8,7 +8,7 @@ a 0 byte and every entry, n included, is 2 bytes in the stream's byte order.
 import numpy as np
 
 from grainclass._kernels.bits import popcount
-from grainclass._numba import njit
+from grainclass._numba import at, njit
 
 _LOW7 = np.uint64(0x7F7F7F7F7F7F7F7F)
 _HIGH = np.uint64(0x8080808080808080)
@@ -107,31 +107,42 @@ def _scan(buf, words, offset, big_endian, max_records, starts):
 
 
 @njit
-def _fill(buf, big_endian, records, face_offsets, nbr_offsets, neighbors):
-    """Fill CSR arrays for the first ``records`` records (sized by :func:`_scan`).
+def _fill(buf, big_endian, records, starts, face_offsets, nbr_offsets, neighbors):
+    """Fill CSR arrays for the first ``records`` records (found and sized by :func:`_scan`,
+    which put their starts in ``starts``); ``neighbors`` has one slot to spare.
 
     Neighbours become 0-based; an entry larger than n stays out of range for validation to flag.
     """
-    p = 0
     f = 0
     m = 0
     face_offsets[0] = 0
     nbr_offsets[0] = 0
     for r in range(records):
+        p = starts[r]
         wide = buf[p] == 0
         width = 2 if wide else 1
         q = p + 1 if wide else p
         n = _entry(buf, q, wide, big_endian)
         q += width
-        for _ in range(n):
-            x = _entry(buf, q, wide, big_endian)
-            q += width
-            while x != 0:
-                neighbors[m] = x - 1
-                m += 1
+        if not wide:
+            # Every byte is stored, a 0 as -1 in the slot the next neighbour takes (at the end,
+            # the spare one), and the list's end is written until its 0 comes: no branch per
+            # byte, where a loop per list would mispredict at each list's end.
+            for i in range(q, starts[r + 1]):
+                x = int(buf[at(i)])
+                neighbors[at(m)] = x - 1
+                m += x != 0
+                nbr_offsets[at(f + 1)] = m
+                f += x == 0
+        else:
+            for _ in range(n):
                 x = _entry(buf, q, wide, big_endian)
                 q += width
-            f += 1
-            nbr_offsets[f] = m
+                while x != 0:
+                    neighbors[m] = x - 1
+                    m += 1
+                    x = _entry(buf, q, wide, big_endian)
+                    q += width
+                f += 1
+                nbr_offsets[f] = m
         face_offsets[r + 1] = f
-        p = q

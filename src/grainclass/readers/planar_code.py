@@ -107,8 +107,8 @@ def read_planar_code(
         else:
             face_offsets = np.empty(records + 1, np.int64)
             nbr_offsets = np.empty(vertices + 1, np.int64)
-            neighbors = np.empty(entries, np.int32)
-            _fill(buf, big_endian, records, face_offsets, nbr_offsets, neighbors)
+            neighbors = np.empty(entries + 1, np.int32)
+            _fill(buf, big_endian, records, starts, face_offsets, nbr_offsets, neighbors)
             yield GrainBatch(
                 source=source,
                 grain_id=decimal_strings(np.arange(record, record + records)),
@@ -116,7 +116,7 @@ def read_planar_code(
                 location_kind="record",
                 face_offsets=face_offsets,
                 nbr_offsets=nbr_offsets,
-                neighbors=neighbors,
+                neighbors=neighbors[:entries],
             )
         record += records
         pos += consumed
