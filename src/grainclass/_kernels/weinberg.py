@@ -23,7 +23,7 @@ as counter-clockwise seen from outside (the orientation of face 0's list for tex
 import numpy as np
 
 from grainclass._kernels.validate import _rotation
-from grainclass._numba import njit
+from grainclass._numba import at, njit
 
 # Stamps count walks within one kernel call; the tables are cleared before they could overflow.
 _MAX_STAMP = 1 << 30
@@ -37,30 +37,30 @@ def _walk(n, sigma, length, a, b, turn, best, state, stamp, gen, label, used, co
     (``code`` then holds it), 0 if equal, +1 as soon as it is larger. ``stamp``/``used`` hold
     ``gen`` for what this walk has seen, so nothing is reset per walk.
     """
-    c = sigma[a * n + b]
+    c = sigma[at(a * n + b)]
     for dart in (a * n + b, b * n + c, c * n + a):
-        stamp[dart] = gen
-        label[dart] = 1
+        stamp[at(dart)] = gen
+        label[at(dart)] = 1
     next_label = 2
     code[0] = 1
     cmp = state
     for step in range(1, length):
-        used[a * n + b] = gen
+        used[at(a * n + b)] = gen
         # Across to corner (b, a, r): back is its edge b -> a, ahead (a -> r) and behind
         # (r -> b) its others, counter-clockwise.
         back = b * n + a
-        r = sigma[back]
+        r = sigma[at(back)]
         ahead, behind = a * n + r, r * n + b
-        if stamp[back] != gen:
-            stamp[back] = stamp[ahead] = stamp[behind] = gen
-            label[back] = label[ahead] = label[behind] = next_label
+        if stamp[at(back)] != gen:
+            stamp[at(back)] = stamp[at(ahead)] = stamp[at(behind)] = gen
+            label[at(back)] = label[at(ahead)] = label[at(behind)] = next_label
             next_label += 1
             go = turn  # +1 ahead, -1 behind, 0 back
-        elif used[back] != gen:
+        elif used[at(back)] != gen:
             go = 0
         else:
-            go = turn if used[ahead if turn > 0 else behind] != gen else -turn
-        code[step] = label[back]
+            go = turn if used[at(ahead if turn > 0 else behind)] != gen else -turn
+        code[at(step)] = label[at(back)]
         if go == 0:
             a, b = b, a
         elif go > 0:
@@ -68,9 +68,9 @@ def _walk(n, sigma, length, a, b, turn, best, state, stamp, gen, label, used, co
         else:
             a = r
         if cmp == 0:
-            if code[step] > best[step]:
+            if code[at(step)] > best[at(step)]:
                 return 1
-            if code[step] < best[step]:
+            if code[at(step)] < best[at(step)]:
                 cmp = -1
     return cmp
 
@@ -107,11 +107,11 @@ def _weinberg(n, rot, off, sigma, faces, best, stamp, gen, label, used, code, wa
         # that edge), along x -> v turning right (face v is right of it). Either way the other
         # face of the first edge is x, and the opposite face is the third face at the start.
         for i in range(off[v], off[v + 1]):
-            x = rot[i]
+            x = rot[at(i)]
             for turn in (1, -1):
                 a = v if turn > 0 else x
                 b = x if turn > 0 else v
-                key = faces[sigma[a * n + b]] * sizes + faces[x]
+                key = faces[at(sigma[at(a * n + b)])] * sizes + faces[at(x)]
                 if least < 0 or key < least:
                     least, count = key, 0
                 if key == least:
@@ -197,8 +197,8 @@ def _weinberg_batch(
             faces[v] = off[v + 1] - off[v]
             before = rotations[off[v + 1] - 1]
             for i in range(off[v], off[v + 1]):
-                sigma[v * n + before] = rotations[i]
-                before = rotations[i]
+                sigma[at(v * n + before)] = rotations[at(i)]
+                before = rotations[at(i)]
         if gen > _MAX_STAMP:  # a grain makes at most 12n walks: far from overflowing
             stamp[:] = 0
             used[:] = 0
