@@ -2,7 +2,7 @@
 
 import numpy as np
 
-from grainclass._numba import njit
+from grainclass._numba import at, njit
 
 
 @njit
@@ -18,14 +18,14 @@ def _p_vectors(face_offsets, nbr_offsets, ok):
         largest = 2
         if ok[g]:
             for f in range(face_offsets[g], face_offsets[g + 1]):
-                largest = max(largest, nbr_offsets[f + 1] - nbr_offsets[f])
+                largest = max(largest, nbr_offsets[at(f + 1)] - nbr_offsets[at(f)])
         offsets[g + 1] = offsets[g] + largest - 2
     counts = np.zeros(offsets[n_grains], np.int32)
     for g in range(n_grains):
         if ok[g]:
             for f in range(face_offsets[g], face_offsets[g + 1]):
-                size = nbr_offsets[f + 1] - nbr_offsets[f]
-                counts[offsets[g] + size - 3] += 1
+                size = nbr_offsets[at(f + 1)] - nbr_offsets[at(f)]
+                counts[at(offsets[g] + size - 3)] += 1
                 if size == 3:
                     triangles[g] += 1
     return offsets, counts, triangles
@@ -56,7 +56,7 @@ def _compact(slot_offsets, data, lengths):
     packed = np.empty(offsets[n], np.uint8)
     for g in range(n):
         for i in range(lengths[g]):
-            packed[offsets[g] + i] = data[slot_offsets[g] + i]
+            packed[at(offsets[g] + i)] = data[at(slot_offsets[g] + i)]
     return offsets, packed
 
 
@@ -155,8 +155,8 @@ def _code_strings(codes, code_offsets, ok):
             a, b = code_offsets[g], code_offsets[g + 1]
             two, top = 0, 0
             for i in range(a, b):
-                two += codes[i] >= 10
-                top = max(top, codes[i])
+                two += codes[at(i)] >= 10
+                top = max(top, codes[at(i)])
             small[g] = top < 100
             size = 2 * (b - a) + 1 + two  # "(" or "," before each label, ")" after
             if not small[g]:
@@ -172,14 +172,14 @@ def _code_strings(codes, code_offsets, ok):
         data[p] = 40  # "("
         if small[g]:
             for i in range(a, b):
-                v = np.uint32(codes[i])
+                v = np.uint32(codes[at(i)])
                 tens = v // np.uint32(10)
                 units = v - tens * np.uint32(10)
                 # A single digit is written twice: the "," or ")" that follows comes over it.
-                data[p + 1] = 48 + (tens if tens else units)
-                data[p + 2] = 48 + units
+                data[at(p + 1)] = 48 + (tens if tens else units)
+                data[at(p + 2)] = 48 + units
                 p += 2 + (tens > 0)
-                data[p] = 44  # ","
+                data[at(p)] = 44  # ","
         else:
             for i in range(a, b):
                 p = _write_digits(data, p + 1, codes[i])
@@ -197,6 +197,6 @@ def _fnv1a(offsets, data):
     for g in range(n):
         h = np.uint64(14695981039346656037)
         for i in range(offsets[g], offsets[g + 1]):
-            h = (h ^ np.uint64(data[i])) * prime
+            h = (h ^ np.uint64(data[at(i)])) * prime
         out[g] = h
     return out
