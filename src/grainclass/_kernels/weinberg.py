@@ -14,7 +14,7 @@ the face after b around face a (counter-clockwise), the dart a -> b of the dual 
 (a, b, sigma(a, b)) together with the edge leaving it across its side a-b: the corner's three
 edges, counter-clockwise, are its darts a -> b, b -> c and c -> a (c = sigma(a, b)), and the
 edge back from the corner across is the reverse dart b -> a. Labels, and what a walk has used,
-are kept per dart in n x n tables.
+are kept per dart in one n x n table.
 
 Orientation +1 turns right with the faces seen from outside, taking the input's neighbour lists
 as counter-clockwise seen from outside (the orientation of face 0's list for text input).
@@ -25,42 +25,50 @@ import numpy as np
 from grainclass._kernels.validate import _rotation
 from grainclass._numba import at, njit
 
-# Stamps count walks within one kernel call; the tables are cleared before they could overflow.
+# Stamps count walks within one kernel call; the table is cleared before they could overflow.
 _MAX_STAMP = 1 << 30
+_USED = np.int64(1) << 31  # the walk has left along this dart
+_LABEL = _USED - 1
 
 
 @njit
-def _walk(n, sigma, length, a, b, turn, best, state, stamp, gen, label, used, code):
+def _walk(n, sigma, length, a, b, turn, best, state, gen, seen, code):
     """The first ``length`` entries of the Weinberg walk that leaves corner (a, b, sigma(a, b))
     along its edge a -> b, turning by ``turn`` (-1 right, +1 left, in counter-clockwise steps
     around a corner). Compares with ``best`` as it goes: returns -1 if the code is smaller
-    (``code`` then holds it), 0 if equal, +1 as soon as it is larger. ``stamp``/``used`` hold
-    ``gen`` for what this walk has seen, so nothing is reset per walk.
+    (``code`` then holds it), 0 if equal, +1 as soon as it is larger.
+
+    ``seen`` holds, per dart, ``gen`` (the walk's stamp) in its high half, so nothing is reset
+    per walk, the label of the dart's corner in its low bits and USED once the walk has left
+    along the dart: one load tells whether a corner is new, its label and whether the edge
+    back is free.
     """
+    stamp = np.int64(gen) << 32
     c = sigma[at(a * n + b)]
     for dart in (a * n + b, b * n + c, c * n + a):
-        stamp[at(dart)] = gen
-        label[at(dart)] = 1
+        seen[at(dart)] = stamp | 1
     next_label = 2
     code[0] = 1
     cmp = state
     for step in range(1, length):
-        used[at(a * n + b)] = gen
+        seen[at(a * n + b)] |= _USED
         # Across to corner (b, a, r): back is its edge b -> a, ahead (a -> r) and behind
         # (r -> b) its others, counter-clockwise.
         back = b * n + a
         r = sigma[at(back)]
         ahead, behind = a * n + r, r * n + b
-        if stamp[at(back)] != gen:
-            stamp[at(back)] = stamp[at(ahead)] = stamp[at(behind)] = gen
-            label[at(back)] = label[at(ahead)] = label[at(behind)] = next_label
+        mark = seen[at(back)]
+        if mark < stamp:  # a corner not seen yet in this walk
+            seen[at(back)] = seen[at(ahead)] = seen[at(behind)] = stamp | next_label
+            code[at(step)] = next_label
             next_label += 1
             go = turn  # +1 ahead, -1 behind, 0 back
-        elif used[at(back)] != gen:
-            go = 0
         else:
-            go = turn if used[at(ahead if turn > 0 else behind)] != gen else -turn
-        code[at(step)] = label[at(back)]
+            code[at(step)] = mark & _LABEL
+            if not mark & _USED:
+                go = 0
+            else:
+                go = turn if not seen[at(ahead if turn > 0 else behind)] & _USED else -turn
         if go == 0:
             a, b = b, a
         elif go > 0:
@@ -76,7 +84,7 @@ def _walk(n, sigma, length, a, b, turn, best, state, stamp, gen, label, used, co
 
 
 @njit
-def _weinberg(n, rot, off, sigma, faces, best, stamp, gen, label, used, code, walks):
+def _weinberg(n, rot, off, sigma, faces, best, gen, seen, code, walks):
     """Canonical code into ``best``; returns (symmetry, chirality, the last stamp used).
     ``rot[off[v]:off[v + 1]]`` is face v's counter-clockwise list, ``sigma`` its table and
     ``faces[v]`` its size; ``walks`` (int64[12n - 24, 3], two per dart) is scratch.
@@ -123,7 +131,7 @@ def _weinberg(n, rot, off, sigma, faces, best, stamp, gen, label, used, code, wa
         gen += 1
         state = -1 if best[0] < 0 else 0
         a, b, turn = walks[j, 0], walks[j, 1], walks[j, 2]
-        result = _walk(n, sigma, length, a, b, turn, best, state, stamp, gen, label, used, code)
+        result = _walk(n, sigma, length, a, b, turn, best, state, gen, seen, code)
         if result < 0:
             for i in range(length):
                 best[i] = code[i]
@@ -175,14 +183,13 @@ def _weinberg_batch(
     included) and chirality. Rows of different ranges are disjoint: ranges can run in threads.
 
     ``rotations`` are the neighbour lists turning one way, counter-clockwise (as the fast path
-    found them, or from :func:`_rotations`). Scratch arrays for up to ``max_faces`` faces (four
-    tables of max_faces**2 int32) are allocated once per call.
+    found them, or from :func:`_rotations`). Scratch arrays for up to ``max_faces`` faces (the
+    rotation table, max_faces**2 int32, and the walks' table, max_faces**2 int64) are allocated
+    once per call.
     """
     size = max(max_faces, 1) ** 2
     sigma = np.empty(size, np.int32)
-    label = np.empty(size, np.int32)
-    stamp = np.zeros(size, np.int32)
-    used = np.zeros(size, np.int32)
+    seen = np.zeros(size, np.int64)
     faces = np.empty(max(max_faces, 1), np.int64)
     code = np.empty(max(6 * max_faces - 11, 1), np.int32)
     walks = np.empty((max(12 * max_faces - 24, 1), 3), np.int64)
@@ -200,10 +207,9 @@ def _weinberg_batch(
                 sigma[at(v * n + before)] = rotations[at(i)]
                 before = rotations[at(i)]
         if gen > _MAX_STAMP:  # a grain makes at most 12n walks: far from overflowing
-            stamp[:] = 0
-            used[:] = 0
+            seen[:] = 0
             gen = 0
         best = codes[code_offsets[g] : code_offsets[g] + 6 * n - 11]
         symmetry[g], chirality[g], gen = _weinberg(
-            n, rotations, off, sigma, faces, best, stamp, gen, label, used, code, walks
+            n, rotations, off, sigma, faces, best, gen, seen, code, walks
         )
