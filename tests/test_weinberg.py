@@ -3,6 +3,8 @@ networkx automorphism counts."""
 
 from __future__ import annotations
 
+import os
+
 import numpy as np
 import pyarrow as pa
 import pytest
@@ -45,6 +47,21 @@ def test_symmetry_orders_of_regular_grains(examples, grain, order):
 def test_relabelled_dodecahedron_has_the_same_code(examples):
     # weaire_phelan_12 is the dodecahedron with its faces numbered differently.
     assert examples["weaire_phelan_12"]["weinberg"] == examples["dodecahedron"]["weinberg"]
+
+
+@pytest.mark.skipif(
+    os.environ.get("NUMBA_DISABLE_JIT") != "1",
+    reason="a compiled kernel keeps the stamp limit it was compiled with",
+)
+def test_codes_stay_the_same_when_the_walk_stamps_start_over(plantri_output, monkeypatch):
+    """The walks' table is cleared when their stamps reach a limit, after 2**30 walks; with a
+    limit of five walks it is cleared every few grains, and no code may change."""
+    from grainclass._kernels import weinberg
+
+    batch = next(read_dataset(str(plantri_output(8))))
+    expected = classify(batch).column("weinberg")
+    monkeypatch.setattr(weinberg, "_MAX_STAMP", 5)
+    assert classify(batch).column("weinberg").equals(expected)
 
 
 @pytest.mark.parametrize("n", range(4, 12))
