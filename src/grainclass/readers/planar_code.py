@@ -76,7 +76,6 @@ def read_planar_code(
     gather = gathers_reads(stream)
     buffers = _BufferPool()
     buffer = np.frombuffer(head, np.uint8)  # bytes not yet parsed: buffer[pos:]
-    words = _words(buffer)
     at_end, pos = False, 0
     last_chunk = BLOCK_BYTES  # bytes the last batch took
     record = 1
@@ -85,12 +84,12 @@ def read_planar_code(
         # the new buffer stay small too.
         if not at_end and len(buffer) - pos < min(last_chunk, BLOCK_BYTES):
             buffer, at_end = buffers.refill(stream, buffer[pos:], gather)
-            words, pos = _words(buffer), 0
+            pos = 0
         buf = buffer[pos:]
         buf.flags.writeable = False  # the batches share it; one numba signature for all callers
         starts = np.empty(chunk_size + 1, np.int64)
         records, vertices, entries, consumed = _scan(
-            buf, words, pos, big_endian, chunk_size, starts
+            buf, _words(buffer), pos, big_endian, chunk_size, starts
         )
         if records == 0:
             if at_end:
@@ -98,7 +97,7 @@ def read_planar_code(
                     yield _cut_off(source, record, len(buf))
                 return
             buffer, at_end = buffers.refill(stream, buf, gather)  # a record longer than a block
-            words, pos = _words(buffer), 0
+            pos = 0
             continue
         if raw:
             yield PlanarCodeRecords(
