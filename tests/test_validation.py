@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import io
 import random
 import struct
 
@@ -10,6 +11,7 @@ import pytest
 
 from conftest import EXAMPLES
 from grainclass import GrainBatch, classify, read_dataset
+from grainclass._kernels.small import STAMP_STEP, STAMPS
 from grainclass.readers import sniff
 
 CUBE = [[1, 2, 3, 4], [0, 4, 5, 2], [0, 1, 5, 3], [0, 2, 5, 4], [0, 3, 5, 1], [1, 4, 3, 2]]
@@ -213,3 +215,106 @@ def test_faces_field_edge_cases(tmp_path, faces, status, words):
         assert row["penalty"] == 18
     else:
         assert words in row["error"]
+
+
+def _grain_lists(batch: GrainBatch, g: int) -> list[list[int]]:
+    offsets = batch.nbr_offsets
+    faces = range(batch.face_offsets[g], batch.face_offsets[g + 1])
+    return [batch.neighbors[offsets[f] : offsets[f + 1]].tolist() for f in faces]
+
+
+def _planar_code(grains: list[list[list[int]]]) -> bytes:
+    return b">>planar_code<<" + b"".join(
+        bytes([len(lists)] + [x for nbrs in lists for x in [*(y + 1 for y in nbrs), 0]])
+        for lists in grains
+    )
+
+
+def _damaged(lists: list[list[int]], rng: random.Random) -> list[list[int]]:
+    """A copy of ``lists`` with one or two entries changed, and maybe one list shuffled."""
+    damaged = [list(nbrs) for nbrs in lists]
+    for _ in range(rng.randint(1, 2)):
+        face = rng.randrange(len(damaged))
+        damaged[face][rng.randrange(len(damaged[face]))] = rng.randrange(len(damaged))
+    if rng.random() < 0.5:
+        rng.shuffle(damaged[rng.randrange(len(damaged))])
+    return damaged
+
+
+def test_fast_check_agrees_with_the_full_diagnosis_on_damaged_grains(plantri_output):
+    """The fast check (bitsets and a corner table) passes only grains that the full diagnosis
+    finds ok; each damaged copy comes right after its original."""
+    batch = next(read_dataset(str(plantri_output(11)), chunk_size=10**6))
+    rng = random.Random(20261122)
+    grains = []
+    for g in rng.sample(range(len(batch)), 300):
+        lists = _grain_lists(batch, g)
+        grains += [lists, _damaged(lists, rng)]
+    damaged = GrainBatch.from_lists(grains)
+    fast, full = classify(damaged), classify(damaged, max_bitset_faces=0)
+    assert fast.equals(full)
+    assert 0 < fast.column("status").to_pylist().count("ok") < len(grains)
+
+
+# Two triangulations, each with an invalid copy (some lists changed) that the fast check passes
+# if the original's corners, left in its corner table, count as the copy's: right after it
+# (each grain has a stamp of its own), or STAMPS - 1 tetrahedra later, where the stamps start
+# over (the table is cleared then). The tetrahedra overwrite only the corners of faces 0..3.
+ORIGINAL = [[1, 2, 3, 4, 5, 6, 7, 8], [0, 8, 2], [0, 1, 8, 3], [0, 2, 8, 6, 5, 4], [0, 3, 5],
+            [0, 4, 3, 6], [0, 5, 3, 8, 7], [0, 6, 8], [0, 7, 6, 3, 2, 1]]  # fmt: skip
+COPY = [[7, 4, 1, 6, 3, 8, 2, 5], [0, 8, 2], [0, 5, 8, 3], [0, 2, 8, 6, 5, 1], [0, 3, 5],
+        [0, 4, 3, 6], [0, 5, 3, 8, 7], [0, 6, 8], [0, 7, 6, 3, 2, 1]]  # fmt: skip
+STAMPED = [[1, 2, 3, 4, 5, 6, 7, 8], [0, 8, 4, 3, 2], [0, 1, 3], [0, 2, 1, 4], [0, 3, 1, 8, 5],
+           [0, 4, 8, 7, 6], [0, 5, 7], [0, 6, 5, 8], [0, 7, 5, 4, 1]]  # fmt: skip
+STALE = [[1, 7, 5, 2, 6, 3, 8, 4], [0, 8, 4, 3, 2], [0, 1, 3], [0, 2, 1, 4], [0, 3, 1, 8, 5],
+         [0, 2, 8, 7, 6], [0, 5, 7], [0, 6, 5, 8], [0, 7, 5, 4, 1]]  # fmt: skip
+TETRAHEDRON = [[1, 2, 3], [0, 3, 2], [0, 1, 3], [0, 2, 1]]
+
+
+def _fast_check(lists, following, stamp) -> bool:
+    import numpy as np
+
+    from grainclass._kernels.small import _validate_small
+
+    csr = GrainBatch.from_lists([lists])
+    adj = np.empty(64, np.uint64)
+    return _validate_small(len(lists), csr.nbr_offsets, csr.neighbors, 0, adj, following, stamp)
+
+
+def _statuses(grains: list[list[list[int]]]) -> tuple[list[str], list[str]]:
+    """Statuses from one kernel call (one corner table) over ``grains``: as CSR lists, and as
+    planar_code records classified from their bytes."""
+    from grainclass._kernels.codes import STATUS_NAMES
+    from grainclass.classification import grain_codes
+    from grainclass.parallel import get_jobs, set_jobs
+    from grainclass.readers.planar_code import read_planar_code
+
+    jobs = get_jobs()
+    try:
+        set_jobs(1)
+        rows = classify(GrainBatch.from_lists(grains)).column("status").to_pylist()
+        (records,) = read_planar_code(io.BytesIO(_planar_code(grains)), "x", 10**6, raw=True)
+        counted = [STATUS_NAMES[s] for s in grain_codes(records).status]
+    finally:
+        set_jobs(jobs)
+    return rows, counted
+
+
+@pytest.mark.parametrize(
+    ("original", "copy", "between"),
+    [(ORIGINAL, COPY, 0), (STAMPED, STALE, STAMPS - 1)],
+    ids=["next grain", "stamps start over"],
+)
+def test_corners_of_an_earlier_grain_never_count(original, copy, between):
+    import numpy as np
+
+    grains = [original] + [TETRAHEDRON] * between + [copy]
+    # The premise: given the original's stamp, the copy would pass.
+    following = np.zeros(64 * 64, np.uint16)
+    for g, lists in enumerate(grains[:-1]):
+        assert _fast_check(lists, following, (g + 1) * STAMP_STEP)
+    assert _fast_check(copy, following, STAMP_STEP)
+    assert _row(copy)["status"] == "invalid"
+
+    expected = ["ok"] * (1 + between) + ["invalid"]
+    assert _statuses(grains) == (expected, expected)

@@ -22,6 +22,7 @@ from grainclass._kernels.small import (
     _reduce_small,
     _validate_record,
     _validate_small,
+    next_stamp,
 )
 from grainclass._kernels.trees import (
     _forest_scratch,
@@ -38,7 +39,7 @@ def _work():
     """Scratch for :func:`_classify_small`, allocated once per kernel call."""
     return (
         np.empty(MAX_BITSET_FACES, np.uint64),  # adjacency bitsets
-        np.empty(MAX_BITSET_FACES * MAX_BITSET_FACES, np.uint8),  # next neighbour around a face
+        np.zeros(MAX_BITSET_FACES * MAX_BITSET_FACES, np.uint16),  # corners (small.next_stamp)
         np.empty(MAX_BITSET_FACES, np.uint64),  # link of each removed face
         np.empty(MAX_BITSET_FACES, np.int32),  # round it was removed in
         _forest_scratch(MAX_BITSET_FACES),
@@ -142,7 +143,8 @@ def _classify_batch(
     truncation forests are only counted (trees_count; depth and tree bytes are left alone).
     """
     work = _work()
-    _, _, link, removed_round, scratch = work
+    _, following, link, removed_round, scratch = work
+    stamp = 0
     for g in range(first, last):
         family[g] = -1
         depth[g] = 0
@@ -152,7 +154,10 @@ def _classify_batch(
             continue
         f0 = face_offsets[g]
         n = face_offsets[g + 1] - f0
-        if n <= max_small and _validate_small(n, nbr_offsets, neighbors, f0, work[0], work[1]):
+        stamp = next_stamp(following, stamp)
+        if n <= max_small and _validate_small(
+            n, nbr_offsets, neighbors, f0, work[0], following, stamp
+        ):
             status[g] = OK
             consistent[g] = True
             alive = _classify_small(g, n, work, family, fundamental, belts)
@@ -230,7 +235,8 @@ def _classify_records(
     on CSR arrays.
     """
     work = _work()
-    links = work[2]
+    _, following, links, _, _ = work
+    stamp = 0
     for r in range(first, last):
         p = starts[r]
         wide = buf[p] == 0
@@ -239,11 +245,12 @@ def _classify_records(
         n_faces[r] = n
         family[r] = -1
         # 1 + n + (6n - 12) bytes: a triangulation's worth of entries.
+        stamp = next_stamp(following, stamp)
         if (
             not wide
             and n <= MAX_BITSET_FACES
             and starts[r + 1] - p == 7 * n - 11
-            and _validate_record(buf, q + 1, n, work[0], work[1])
+            and _validate_record(buf, q + 1, n, work[0], following, stamp)
         ):
             status[r] = OK
             cubic = 0

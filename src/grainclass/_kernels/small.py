@@ -7,8 +7,10 @@ makes :func:`_validate_small` return False, and the general path of ``validate.p
 ``reduce.py`` and ``belts.py`` takes over, with its exact diagnosis.
 """
 
+import numpy as np
+
 from grainclass._kernels.bits import ONE, ZERO, bit, full, lowest, popcount
-from grainclass._numba import njit
+from grainclass._numba import at, njit
 
 
 @njit
@@ -27,40 +29,71 @@ def _component(adj, start, allowed):
     return comp
 
 
+STAMP_STEP = 64  # a corner table entry: the grain's stamp, a multiple of this, plus a face
+STAMPS = (1 << 16) // STAMP_STEP - 1  # grains between clearings of the (uint16) table
+
+
 @njit(inline="always")
-def _corner(v, x, y, adj, following):
+def next_stamp(following, stamp):
+    """The stamp for the next grain validated with the corner table ``following``
+    (uint16[64 * 64], zeros at first, with ``stamp`` 0). After STAMPS grains the stamps start
+    over and the table is cleared, so that no entry written for an earlier grain can match:
+    stale corners could otherwise close triangles for an invalid grain."""
+    stamp += STAMP_STEP
+    if stamp > STAMPS * STAMP_STEP:
+        for i in range(following.size):
+            following[i] = 0
+        stamp = STAMP_STEP
+    return stamp
+
+
+@njit(inline="always")
+def _corner(v, x, y, stamp, following):
     """Record the corner (v, x, y) of face v: y follows x around v (``following[64 v + x]``).
 
-    Returns 1 if v is the largest of the three and the triangle closes consistently,
-    next_x(y) = v and next_y(v) = x (the lists of x and y are complete by then), else 0.
+    Returns 1 if the triangle closes consistently, next_x(y) = v and next_y(v) = x, both
+    written for this grain (``stamp``): that holds only at the last of the three faces to be
+    listed, so each closed triangle counts once, and entries of faces not listed yet, or of
+    earlier grains, never match. No branch: which corners close is data, not pattern.
     """
-    following[64 * v + x] = y
-    if x < v and y < v:  # a third of the corners: a branch beats computing it for all
-        return (
-            ((adj[x] & bit(y)) != ZERO)
-            & ((adj[y] & bit(v)) != ZERO)
-            & (following[64 * x + y] == v)
-            & (following[64 * y + v] == x)
-        )
-    return 0
+    following[at(64 * v + x)] = stamp | y
+    return (following[at(64 * x + y)] == (stamp | v)) & (following[at(64 * y + v)] == (stamp | x))
+
+
+@njit(inline="always")
+def _reach(reached, v, row):
+    """``reached`` and, if face v is in it, the faces of ``row``: in one pass over the lists,
+    the faces joined to face 0 through faces listed before them (plantri's numbering: all)."""
+    return reached | (row & (ZERO - ((reached >> np.uint64(v)) & ONE)))
+
+
+@njit(inline="always")
+def _connected(adj, reached, n):
+    """Whether all n faces are joined to face 0, given those :func:`_reach` found."""
+    everything = full(n)
+    return reached == everything or _component(adj, reached, everything) == everything
 
 
 @njit
-def _validate_small(n, nbr_offsets, neighbors, f0, adj, following):
+def _validate_small(n, nbr_offsets, neighbors, f0, adj, following, stamp):
     """True if grain (faces from ``f0``) is certainly a simple grain with consistent cyclic lists.
 
-    Fills ``adj`` (uint64[>=n]) and ``following`` (uint8[64 * 64]). One pass over the darts
-    checks 6n - 12 of them, indices in range, no repeats, and counts the corners whose
-    triangle closes (:func:`_corner`), each triangle once, at its largest vertex. A dart
-    determines its triangle, so 2n - 4 closed triangles use every dart: every dual face is a
-    triangle, each face is in the list of each of its neighbours, F = 2n - 4 and, with
-    connectivity, the Euler characteristic is 2: a sphere. Indices are masked to 0..63 so that
-    bad input cannot index outside the tables; it is rejected at the end.
+    Fills ``adj`` (uint64[>=n]) and the corner table ``following`` (see :func:`next_stamp`).
+    One pass over the darts checks 6n - 12 of them, indices in range, no repeats, and counts
+    the corners whose triangle closes (:func:`_corner`). A dart determines its triangle, so
+    2n - 4 closed triangles use every dart: every dual face is a triangle, each face is in the
+    list of each of its neighbours, F = 2n - 4 and, with connectivity, the Euler characteristic
+    is 2: a sphere. Indices are masked to 0..63 so that bad input cannot index outside the
+    tables; it is rejected at the end. The checks accumulate in integers tested once at the
+    end: a branch or a flag per dart took a third more time.
     """
     if nbr_offsets[f0 + n] - nbr_offsets[f0] != 6 * n - 12:
         return False
-    bad = False
+    last = n - 1
+    out_of_range = 0  # negative once an index is outside 0..n-1
+    repeated = ZERO  # a face twice in a list, or in its own
     closed = 0
+    reached = ONE
     for v in range(n):
         s, e = nbr_offsets[f0 + v], nbr_offsets[f0 + v + 1]
         if e - s < 3:
@@ -68,54 +101,63 @@ def _validate_small(n, nbr_offsets, neighbors, f0, adj, following):
         row = ZERO
         x = neighbors[e - 1] & 63
         for i in range(s, e):
-            y = neighbors[i]
-            bad |= (y < 0) | (y >= n)
+            y = int(neighbors[i])
+            out_of_range |= y | (last - y)
             y &= 63
-            bad |= (row & bit(y)) != ZERO
+            repeated |= row & bit(y)
             row |= bit(y)
-            closed += _corner(v, x, y, adj, following)
+            closed += _corner(v, x, y, stamp, following)
             x = y
-        bad |= (row & bit(v)) != ZERO
-        adj[v] = row
-    if bad or closed != 2 * n - 4:
+        repeated |= row & bit(v)
+        adj[at(v)] = row
+        reached = _reach(reached, v, row)
+    if out_of_range < 0 or repeated != ZERO or closed != 2 * n - 4:
         return False
-    return _component(adj, ONE, full(n)) == full(n)
+    return _connected(adj, reached, n)
 
 
 @njit
-def _validate_record(buf, p, n, adj, following):
+def _validate_record(buf, p, n, adj, following, stamp):
     """:func:`_validate_small` reading a planar_code record of 1-byte entries in place: the
     lists of faces 0..n-1 start at ``buf[p]``, 1-based, each ended by a 0, with 6n - 12 entries
     in all (the caller checks the record's length). The corner that closes a list, (v, last,
     first), is recorded after the others.
     """
-    bad = False
+    last = n - 1
+    out_of_range = 0
+    repeated = ZERO
+    few = False  # a list of fewer than three
     closed = 0
+    reached = ONE
     for v in range(n):
-        if buf[p] == 0:
+        first = int(buf[at(p)]) - 1
+        if first < 0:
             return False
-        first = int(buf[p]) - 1
-        bad |= first >= n
+        out_of_range |= last - first
         first &= 63
         x = first
         row = bit(x)
         p += 1
-        while buf[p] != 0:
-            y = int(buf[p]) - 1
-            bad |= y >= n
+        b = int(buf[at(p)])
+        while b != 0:
+            y = b - 1
+            out_of_range |= last - y
             y &= 63
-            bad |= (row & bit(y)) != ZERO
+            repeated |= row & bit(y)
             row |= bit(y)
-            closed += _corner(v, x, y, adj, following)
+            closed += _corner(v, x, y, stamp, following)
             x = y
             p += 1
+            b = int(buf[at(p)])
         p += 1
-        closed += _corner(v, x, first, adj, following)
-        bad |= ((row & bit(v)) != ZERO) | (popcount(row) < 3)
-        adj[v] = row
-    if bad or closed != 2 * n - 4:
+        closed += _corner(v, x, first, stamp, following)
+        repeated |= row & bit(v)
+        few |= popcount(row) < 3
+        adj[at(v)] = row
+        reached = _reach(reached, v, row)
+    if out_of_range < 0 or repeated != ZERO or few or closed != 2 * n - 4:
         return False
-    return _component(adj, ONE, full(n)) == full(n)
+    return _connected(adj, reached, n)
 
 
 @njit
