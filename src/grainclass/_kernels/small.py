@@ -85,29 +85,37 @@ def _validate_small(n, nbr_offsets, neighbors, f0, adj, following, stamp):
     list of each of its neighbours, F = 2n - 4 and, with connectivity, the Euler characteristic
     is 2: a sphere. Indices are masked to 0..63 so that bad input cannot index outside the
     tables; it is rejected at the end. The checks accumulate in integers tested once at the
-    end: a branch or a flag per dart took a third more time.
+    end: a branch or a flag per dart took a third more time. The corner that closes a list,
+    (v, last, first), is recorded after the others.
     """
-    if nbr_offsets[f0 + n] - nbr_offsets[f0] != 6 * n - 12:
+    if nbr_offsets[at(f0 + n)] - nbr_offsets[at(f0)] != 6 * n - 12:
         return False
     last = n - 1
     out_of_range = 0  # negative once an index is outside 0..n-1
     repeated = ZERO  # a face twice in a list, or in its own
     closed = 0
     reached = ONE
+    i = nbr_offsets[at(f0)]
     for v in range(n):
-        s, e = nbr_offsets[f0 + v], nbr_offsets[f0 + v + 1]
-        if e - s < 3:
+        end = nbr_offsets[at(f0 + v + 1)]
+        if end - i < 3:
             return False
-        row = ZERO
-        x = neighbors[e - 1] & 63
-        for i in range(s, e):
-            y = int(neighbors[i])
+        first = int(neighbors[at(i)])
+        out_of_range |= first | (last - first)
+        first &= 63
+        x = first
+        row = bit(x)
+        i += 1
+        while i < end:
+            y = int(neighbors[at(i)])
             out_of_range |= y | (last - y)
             y &= 63
             repeated |= row & bit(y)
             row |= bit(y)
             closed += _corner(v, x, y, stamp, following)
             x = y
+            i += 1
+        closed += _corner(v, x, first, stamp, following)
         repeated |= row & bit(v)
         adj[at(v)] = row
         reached = _reach(reached, v, row)
@@ -120,8 +128,7 @@ def _validate_small(n, nbr_offsets, neighbors, f0, adj, following, stamp):
 def _validate_record(buf, p, n, adj, following, stamp):
     """:func:`_validate_small` reading a planar_code record of 1-byte entries in place: the
     lists of faces 0..n-1 start at ``buf[p]``, 1-based, each ended by a 0, with 6n - 12 entries
-    in all (the caller checks the record's length). The corner that closes a list, (v, last,
-    first), is recorded after the others.
+    in all (the caller checks the record's length).
     """
     last = n - 1
     out_of_range = 0
