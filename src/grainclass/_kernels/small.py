@@ -64,7 +64,7 @@ def _corner(v, x, y, stamp, following):
 def _reach(reached, v, row):
     """``reached`` and, if face v is in it, the faces of ``row``: in one pass over the lists,
     the faces joined to face 0 through faces listed before them (plantri's numbering: all)."""
-    return reached | (row & (ZERO - ((reached >> np.uint64(v)) & ONE)))
+    return reached | (row if (reached >> np.uint64(v)) & ONE else ZERO)
 
 
 @njit(inline="always")
