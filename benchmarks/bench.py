@@ -255,6 +255,11 @@ def bench_adjacency(work: Path) -> None:
     path = work / "grains-268402.txt"
     write_adjacency(path, 14, 268_402)
     gc = " ".join(GRAINCLASS)
+    # Compile the text reader's kernels before timing, as (a) does for its runs.
+    first = work / "grains-1000.txt"
+    with open(path) as lines, open(first, "w") as out:
+        out.writelines(itertools.islice(lines, 1000))
+    subprocess.run(f"{gc} classify {first} -o {work / 'adj.parquet'} -q", shell=True, check=True)
     seconds, mem, *_ = timed(f"{gc} classify {path} -o {work / 'adj.parquet'} -q")
     size = path.stat().st_size / 1e6
     print(f"(c) 268,402 grains of adjacency text ({size:.0f} MB): {seconds:.2f} s, {mem:.0f} MB")
