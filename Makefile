@@ -3,6 +3,8 @@ PYTHON ?= python3
 VENV ?= .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed-stamp
+KERNELS := $(wildcard src/grainclass/_kernels/*.py) src/grainclass/_numba.py
+KERNELS_STAMP := build/.kernels-stamp
 
 .PHONY: all install demo test test-nojit lint bench reproduce-enumeration reproduce-voronoi reproduce-census bench-census clean
 
@@ -13,7 +15,16 @@ $(STAMP): pyproject.toml
 	$(BIN)/python -m pip install --quiet --disable-pip-version-check -e '.[test]'
 	touch $(STAMP)
 
-install: $(STAMP)
+# numba's cache does not notice a change in a kernel inlined from another file (a batch kernel
+# would go on calling the old one, in tests and benchmarks alike): whenever a kernel's source is
+# newer than the last run, the caches go.
+$(KERNELS_STAMP): $(KERNELS)
+	find src -name '*.nbi' -delete -o -name '*.nbc' -delete
+	rm -rf build/numba-cache
+	@mkdir -p build
+	touch $@
+
+install: $(STAMP) $(KERNELS_STAMP)
 
 demo: install
 	@mkdir -p build
@@ -53,8 +64,6 @@ reproduce-voronoi: install
 reproduce-census: install
 	$(BIN)/python scripts/reproduce_census.py
 
-# numba's cache does not notice a change in a kernel called from another file: after editing
-# src/grainclass/_kernels, clear it.
 clean:
 	rm -rf build .pytest_cache
 	find src -name '*.nbi' -delete -o -name '*.nbc' -delete
