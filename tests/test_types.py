@@ -68,3 +68,39 @@ def test_types_writes_vorotop_distribution(tmp_path):
         for t, a, b, c in (line.split("\t")[1:] for line in lines)
     )
     assert (tmp_path / "t.csv").read_text().startswith("weinberg,n_faces,p_vector,class,split")
+
+
+def test_summarize_counts_a_type_once_from_rows_and_from_raw_input(tmp_path):
+    # Raw inputs hash the Weinberg codes without writing them, Parquet rows hash the strings:
+    # the hashes must agree for a type seen both ways to count once.
+    grains = tmp_path / "grains.parquet"
+    runner = CliRunner()
+    assert runner.invoke(cli, ["classify", *INPUTS, "-o", str(grains)]).exit_code == 0
+    both = [str(grains), *INPUTS, "--types", "--format", "json"]
+    result = runner.invoke(cli, ["summarize", *both])
+    assert result.exit_code == 0, result.output
+    assert json.loads(result.stdout)["headline"]["types"] == 245
+
+
+def test_code_hashes_are_the_hashes_of_the_code_strings():
+    import numpy as np
+
+    from grainclass import GrainBatch
+    from grainclass._kernels.columns import _code_hashes, _code_strings, _fnv1a
+    from grainclass.classification import MAX_BITSET_FACES, _classify_csr, _types
+
+    # Bipyramids up to 120 faces: labels of one, two and three digits.
+    def bipyramid(k):
+        ring = [[(i - 1) % k, k, (i + 1) % k, k + 1] for i in range(k)]
+        return [*ring, list(range(k)), list(reversed(range(k)))]
+
+    batch = GrainBatch.from_lists([bipyramid(k) for k in (3, 4, 9, 30, 70, 118)])
+    types = _types(batch, _classify_csr(batch, MAX_BITSET_FACES, strings=False), True)
+    assert types.computed.all()
+    assert max(types.weinberg) >= 100
+    strings = _code_strings(types.weinberg, types.code_offsets, types.computed)
+    expected = _fnv1a(*strings)
+    np.testing.assert_array_equal(
+        _code_hashes(types.weinberg, types.code_offsets, types.computed), expected
+    )
+    assert len(set(expected.tolist())) == 6

@@ -239,12 +239,16 @@ def grain_codes(batch: GrainBatch | PlanarCodeRecords) -> GrainCodes:
     return codes_
 
 
-def grain_codes_and_types(batch: GrainBatch) -> tuple[GrainCodes, pa.Array]:
-    """:func:`grain_codes` of a CSR batch, with the Weinberg vectors ``classify`` would write
-    (null where a grain is not ok): what ``summarize --types`` counts, without the rest of the
-    per-grain table."""
+def grain_codes_and_type_hashes(batch: GrainBatch) -> tuple[GrainCodes, np.ndarray]:
+    """:func:`grain_codes` of a CSR batch, with the 64-bit hash of the Weinberg vector that
+    ``classify`` would write for each ok grain (:func:`grainclass.summary.type_hashes` of it;
+    0 where not ok): what ``summarize --types`` counts, without the vectors' strings."""
+    from grainclass._kernels.columns import _code_hashes
+
     out = _classify_csr(batch, MAX_BITSET_FACES, strings=False)
-    return _csr_grain_codes(batch, out), _weinberg_strings(_types(batch, out, True))
+    types = _types(batch, out, True)
+    hashes = _code_hashes(types.weinberg, types.code_offsets, types.computed)
+    return _csr_grain_codes(batch, out), hashes
 
 
 def _csr_grain_codes(batch: GrainBatch, out: _Classified) -> GrainCodes:

@@ -144,12 +144,11 @@ def tally_batch(
     """A :class:`Tally` of raw grains, classified for counting only (no per-grain rows, no
     truncation-tree strings): the census path of ``summarize``. With ``types`` (a CSR batch
     only) the Weinberg vectors are computed too, for the distinct types."""
-    from grainclass.arrow import booleans
-    from grainclass.classification import grain_codes, grain_codes_and_types
+    from grainclass.classification import grain_codes, grain_codes_and_type_hashes
 
-    weinberg = None
+    code_hashes = None
     if types:
-        codes, weinberg = grain_codes_and_types(batch)
+        codes, code_hashes = grain_codes_and_type_hashes(batch)
     else:
         codes = grain_codes(batch)
     volume, area = getattr(batch, "volume", None), getattr(batch, "area", None)
@@ -158,6 +157,9 @@ def tally_batch(
     if boundary is not None and not include_boundary:
         keep = boundary != 1
     ok = codes.status == kernel_codes.OK
+    hashes = np.zeros(0, np.uint64)
+    if code_hashes is not None:  # the distinct types of the kept ok grains
+        hashes = np.unique(code_hashes[ok if keep is None else ok & keep])
     round_k = np.where(ok & (codes.family != kernel_codes.SC), codes.truncations, -1)
     keys = [codes.status, codes.family, codes.class_code, codes.n_faces, round_k, codes.split_k]
     triangles = codes.triangles
@@ -169,7 +171,6 @@ def tally_batch(
         keys = [column[keep] for column in keys]
         triangles = triangles[keep]
         q = None if q is None else q[keep]
-        weinberg = None if weinberg is None else weinberg.filter(booleans(keep))
     # Codes shifted to be >= 0 (-1 is null), one row per kept grain.
     shifted = [keys[0].astype(np.int64), *(np.add(c, 1, dtype=np.int64) for c in keys[1:])]
     first, group = group_rows(shifted)
@@ -202,7 +203,6 @@ def tally_batch(
             Q_SQUARES: q_squares,
         }
     )
-    hashes = np.zeros(0, np.uint64) if weinberg is None else type_hashes(weinberg)
     return Tally(counts, kept, hashes, boundary_excluded=len(batch) - kept)
 
 

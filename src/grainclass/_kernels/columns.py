@@ -188,15 +188,51 @@ def _code_strings(codes, code_offsets, ok):
     return offsets, data
 
 
+_FNV_BASIS = np.uint64(14695981039346656037)
+_FNV_PRIME = np.uint64(1099511628211)
+
+
+@njit(inline="always")
+def _fnv_byte(h, byte):
+    return (h ^ np.uint64(byte)) * _FNV_PRIME
+
+
+@njit
+def _code_hashes(codes, code_offsets, ok):
+    """:func:`_fnv1a` of the strings :func:`_code_strings` would write, without writing them
+    (``summarize --types`` only counts distinct codes): 0 where not ok."""
+    n = ok.shape[0]
+    out = np.zeros(n, np.uint64)
+    digits = np.empty(20, np.uint8)
+    for g in range(n):
+        if not ok[g]:
+            continue
+        h = _fnv_byte(_FNV_BASIS, 40)  # "("
+        for i in range(code_offsets[g], code_offsets[g + 1]):
+            if i > code_offsets[g]:
+                h = _fnv_byte(h, 44)  # ","
+            v = codes[at(i)]
+            if v < 10:
+                h = _fnv_byte(h, 48 + v)
+            elif v < 100:
+                tens = v // 10
+                h = _fnv_byte(_fnv_byte(h, 48 + tens), 48 + v - 10 * tens)
+            else:
+                end = _write_digits(digits, 0, v)
+                for k in range(end):
+                    h = _fnv_byte(h, digits[k])
+        out[g] = _fnv_byte(h, 41)  # ")"
+    return out
+
+
 @njit
 def _fnv1a(offsets, data):
     """64-bit FNV-1a hash of each string of an Arrow string array (offsets, bytes)."""
     n = offsets.shape[0] - 1
     out = np.empty(n, np.uint64)
-    prime = np.uint64(1099511628211)
     for g in range(n):
-        h = np.uint64(14695981039346656037)
+        h = _FNV_BASIS
         for i in range(offsets[g], offsets[g + 1]):
-            h = (h ^ np.uint64(data[at(i)])) * prime
+            h = _fnv_byte(h, data[at(i)])
         out[g] = h
     return out
