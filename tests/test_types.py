@@ -99,8 +99,8 @@ def test_code_hashes_are_the_hashes_of_the_code_strings():
     assert types.computed.all()
     assert max(types.weinberg) >= 100
     strings = _code_strings(types.weinberg, types.code_offsets, types.computed)
-    expected = _fnv1a(*strings)
-    np.testing.assert_array_equal(
-        _code_hashes(types.weinberg, types.code_offsets, types.computed), expected
-    )
+    with np.errstate(over="ignore"):  # FNV wraps (seen without the JIT)
+        expected = _fnv1a(*strings)
+        hashes = _code_hashes(types.weinberg, types.code_offsets, types.computed)
+    np.testing.assert_array_equal(hashes, expected)
     assert len(set(expected.tolist())) == 6

@@ -247,7 +247,8 @@ def grain_codes_and_type_hashes(batch: GrainBatch) -> tuple[GrainCodes, np.ndarr
 
     out = _classify_csr(batch, MAX_BITSET_FACES, strings=False)
     types = _types(batch, out, True)
-    hashes = _code_hashes(types.weinberg, types.code_offsets, types.computed)
+    with np.errstate(over="ignore"):  # FNV wraps modulo 2**64 on purpose (seen without the JIT)
+        hashes = _code_hashes(types.weinberg, types.code_offsets, types.computed)
     return _csr_grain_codes(batch, out), hashes
 
 
