@@ -75,3 +75,15 @@ def relabel(lists: list[list[int]], perm: list[int]) -> list[list[int]]:
 def mirror(lists: list[list[int]]) -> list[list[int]]:
     """The mirror image: every cyclic order reversed."""
     return [list(reversed(nbrs)) for nbrs in lists]
+
+
+def bipyramid(k: int) -> list[list[int]]:
+    """The k-gonal bipyramid (the dual of the k-gonal prism): k + 2 vertices, cyclic lists."""
+    north, south = k, k + 1
+    ring = [[(i - 1) % k, north, (i + 1) % k, south] for i in range(k)]
+    return [*ring, list(range(k)), list(reversed(range(k)))]
+
+
+def planar_code_record(lists: list[list[int]]) -> bytes:
+    """A 1-byte planar_code record from 0-based neighbour lists."""
+    return bytes([len(lists)] + [x for nbrs in lists for x in [*(y + 1 for y in nbrs), 0]])

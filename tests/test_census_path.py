@@ -22,6 +22,7 @@ from grainclass.classification import grain_codes
 from grainclass.pipeline import tallies
 from grainclass.readers.planar_code import PlanarCodeRecords, read_planar_code
 from grainclass.summary import group_rows, summarize, tally_batch
+from strategies import bipyramid, planar_code_record
 
 FIELDS = ("n_faces", "status", "family", "truncations", "class_code", "split_k", "triangles")
 
@@ -40,18 +41,6 @@ def _assert_same(data: bytes) -> int:
         for name in FIELDS:
             np.testing.assert_array_equal(getattr(a, name), getattr(b, name), err_msg=name)
     return sum(len(a.status) for a in raw)
-
-
-def _record(lists: list[list[int]]) -> bytes:
-    """A 1-byte planar_code record from 0-based neighbour lists."""
-    return bytes([len(lists)] + [x for nbrs in lists for x in [*(y + 1 for y in nbrs), 0]])
-
-
-def _bipyramid(k: int) -> list[list[int]]:
-    """The k-gonal bipyramid (the dual of the k-gonal prism): k + 2 vertices, cyclic lists."""
-    north, south = k, k + 1
-    ring = [[(i - 1) % k, north, (i + 1) % k, south] for i in range(k)]
-    return [*ring, list(range(k)), list(reversed(range(k)))]
 
 
 def _record_ends(data: bytes) -> list[int]:
@@ -142,11 +131,11 @@ def test_bytes_and_csr_paths_agree_on_damaged_records(plantri_output):
 
 
 def test_large_and_wide_records_take_the_general_way():
-    prism_dual = _bipyramid(68)  # 70 faces: beyond the 64-face bitsets
+    prism_dual = bipyramid(68)  # 70 faces: beyond the 64-face bitsets
     wide = b"\x00" + struct.pack("<H", 6)
-    for nbrs in _bipyramid(4):
+    for nbrs in bipyramid(4):
         wide += b"".join(struct.pack("<H", x + 1) for x in nbrs) + struct.pack("<H", 0)
-    data = b">>planar_code<<" + _record(prism_dual) + _record(_bipyramid(5))
+    data = b">>planar_code<<" + planar_code_record(prism_dual) + planar_code_record(bipyramid(5))
     raw, _ = _both_paths(data)
     assert raw[0].n_faces.tolist() == [70, 7]
     # The 68- and 5-gonal prisms: flag, fundamental, two triangles.

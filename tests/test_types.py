@@ -88,12 +88,9 @@ def test_code_hashes_are_the_hashes_of_the_code_strings():
     from grainclass import GrainBatch
     from grainclass._kernels.columns import _code_hashes, _code_strings, _fnv1a
     from grainclass.classification import MAX_BITSET_FACES, _classify_csr, _types
+    from strategies import bipyramid
 
     # Bipyramids up to 120 faces: labels of one, two and three digits.
-    def bipyramid(k):
-        ring = [[(i - 1) % k, k, (i + 1) % k, k + 1] for i in range(k)]
-        return [*ring, list(range(k)), list(reversed(range(k)))]
-
     batch = GrainBatch.from_lists([bipyramid(k) for k in (3, 4, 9, 30, 70, 118)])
     types = _types(batch, _classify_csr(batch, MAX_BITSET_FACES, strings=False), True)
     assert types.computed.all()

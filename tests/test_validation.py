@@ -13,6 +13,7 @@ from conftest import EXAMPLES
 from grainclass import GrainBatch, classify, read_dataset
 from grainclass._kernels.small import STAMP_STEP, STAMPS
 from grainclass.readers import sniff
+from strategies import planar_code_record
 
 CUBE = [[1, 2, 3, 4], [0, 4, 5, 2], [0, 1, 5, 3], [0, 2, 5, 4], [0, 3, 5, 1], [1, 4, 3, 2]]
 
@@ -224,10 +225,7 @@ def _grain_lists(batch: GrainBatch, g: int) -> list[list[int]]:
 
 
 def _planar_code(grains: list[list[list[int]]]) -> bytes:
-    return b">>planar_code<<" + b"".join(
-        bytes([len(lists)] + [x for nbrs in lists for x in [*(y + 1 for y in nbrs), 0]])
-        for lists in grains
-    )
+    return b">>planar_code<<" + b"".join(planar_code_record(lists) for lists in grains)
 
 
 def _damaged(lists: list[list[int]], rng: random.Random) -> list[list[int]]:
