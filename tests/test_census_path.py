@@ -258,26 +258,59 @@ def test_pipes_are_read_with_a_larger_buffer(tmp_path):
     read_end, write_end = os.pipe()
     with os.fdopen(read_end, "rb") as reader, os.fdopen(write_end, "wb"):
         before = fcntl.fcntl(reader.fileno(), fcntl.F_GETPIPE_SZ)
-        enlarge_pipe(reader)
+        assert enlarge_pipe(reader) == PIPE_BYTES
         assert before < PIPE_BYTES
         assert fcntl.fcntl(reader.fileno(), fcntl.F_GETPIPE_SZ) == PIPE_BYTES
     path = tmp_path / "file"
     path.write_bytes(b"")
     with path.open("rb") as regular:
-        enlarge_pipe(regular)  # not a pipe: left alone, no error
+        assert enlarge_pipe(regular) == 0  # not a pipe: left alone, no error
         assert not gathers_reads(regular)
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="F_SETPIPE_SZ is Linux's")
+def test_a_larger_pipe_is_never_shrunk(monkeypatch):
+    # Only a privileged user can give a pipe more than 1 MB: such a pipe is seen through a
+    # stand-in for fcntl that reports 4 MB and records every change asked of it.
+    import fcntl
+
+    from grainclass.readers.pipes import PIPE_BYTES, enlarge_pipe
+
+    changes = []
+
+    def four_megabytes(fd, command, *args):
+        if command == fcntl.F_SETPIPE_SZ:
+            changes.append(args)
+        return 4 * PIPE_BYTES
+
+    read_end, write_end = os.pipe()
+    with os.fdopen(read_end, "rb") as reader, os.fdopen(write_end, "wb"):
+        monkeypatch.setattr(fcntl, "fcntl", four_megabytes)
+        assert enlarge_pipe(reader) == 4 * PIPE_BYTES
+    assert changes == []
 
 
 @pytest.mark.skipif(not sys.platform.startswith("linux"), reason="F_SETPIPE_SZ is Linux's")
 def test_reads_wait_to_gather_only_from_a_pipe_that_holds_enough(monkeypatch):
     # A 64 kB pipe fills long before a 2 ms wait ends: waiting would hold the writer up.
+    import fcntl
+
     import grainclass.readers.pipes as pipes
+
+    real_fcntl = fcntl.fcntl
+
+    def refuse_to_enlarge(fd, command, *args):
+        if command == fcntl.F_SETPIPE_SZ:
+            raise PermissionError(1, "Operation not permitted")
+        return real_fcntl(fd, command, *args)
 
     read_end, write_end = os.pipe()
     with os.fdopen(read_end, "rb") as reader, os.fdopen(write_end, "wb"):
+        default = real_fcntl(reader.fileno(), fcntl.F_GETPIPE_SZ)
+        assert default < pipes.PIPE_BYTES
         with monkeypatch.context() as refused:
-            refused.setattr(pipes, "enlarge_pipe", lambda stream: None)
-            assert pipes.pipe_bytes(reader) < pipes.PIPE_BYTES
+            refused.setattr(fcntl, "fcntl", refuse_to_enlarge)
+            assert pipes.enlarge_pipe(reader) == default
             assert not pipes.gathers_reads(reader)
         assert pipes.gathers_reads(reader)
-        assert pipes.pipe_bytes(reader) == pipes.PIPE_BYTES
+        assert real_fcntl(reader.fileno(), fcntl.F_GETPIPE_SZ) == pipes.PIPE_BYTES
