@@ -240,6 +240,25 @@ def test_summarize_reads_raw_standard_input(runner):
     assert result.stdout.splitlines()[1] == "6,2,0,2,0,0,0,0,0,0,0"
 
 
+TETRAHEDRON_LINE = "tet\t1 2 3;0 3 2;0 1 3;0 2 1\n"
+
+
+def test_summarize_says_when_a_table_or_an_average_has_nothing_to_show(runner):
+    # A tetrahedron is stacked: no flag grain, so no split types. An empty line is no grain.
+    tetrahedron = runner.invoke(cli, ["summarize", "-", "--table", "split"], input=TETRAHEDRON_LINE)
+    assert tetrahedron.exit_code == 0
+    assert tetrahedron.stdout.splitlines()[-2:] == [
+        "flag grains by number of faces n and split type k:m (m = n-4-k)",
+        "(none)",
+    ]
+    nothing = runner.invoke(cli, ["summarize", "-", "--table", "classes"], input="\n")
+    assert nothing.exit_code == 0
+    assert nothing.stdout.splitlines()[0] == (
+        "grains: 0 (ok 0, degenerate 0, non_simple 0, invalid 0); no ok grains to average; "
+        "types not computed (--types)"
+    )
+
+
 def test_summarize_missing_input_exits_1(runner, tmp_path):
     result = runner.invoke(cli, ["summarize", str(tmp_path / "nope.parquet")])
     assert result.exit_code == 1

@@ -34,8 +34,12 @@ def headline(summary: Summary) -> str:
     return (
         f"grains: {h['grains']} (ok {h['ok']}, degenerate {h['degenerate']}, "
         f"non_simple {h['non_simple']}, invalid {h['invalid']}); "
-        f"mean faces per grain {h['mean_faces']:.3f}; "
-        f"triangles {h['triangle_faces_percent']:.2f}% of faces; "
+        + (
+            f"mean faces per grain {h['mean_faces']:.3f}; "
+            f"triangles {h['triangle_faces_percent']:.2f}% of faces; "
+            if h["ok"]
+            else "no ok grains to average; "
+        )
         + (
             f"{h['types']} distinct types"
             if h["types"] is not None
@@ -72,6 +76,11 @@ def _display(summary: Summary, name: str) -> pd.DataFrame:
             ]
         return shown
     return table.astype(str)
+
+
+def _text(table: pd.DataFrame) -> str:
+    """A table as aligned text; an empty one as "(none)", not pandas' "Empty DataFrame"."""
+    return table.to_string(index=False) if len(table) else "(none)"
 
 
 def _markdown(table: pd.DataFrame) -> str:
@@ -114,7 +123,7 @@ def render_frame(table: pd.DataFrame, fmt: str, title: str) -> str | bytes:
         return f"**{title}**\n\n{_markdown(shown)}\n"
     if fmt == "latex":
         return f"% {title}\n{_latex(shown)}\n"
-    return f"{title}\n{shown.to_string(index=False)}\n"
+    return f"{title}\n{_text(shown)}\n"
 
 
 def render(summary: Summary, tables: tuple[str, ...], fmt: str) -> str | bytes:
@@ -143,5 +152,5 @@ def render(summary: Summary, tables: tuple[str, ...], fmt: str) -> str | bytes:
         elif fmt == "latex":
             parts.append(f"% {TITLES[name]}\n{_latex(_display(summary, name))}")
         else:
-            parts.append(f"{TITLES[name]}\n{_display(summary, name).to_string(index=False)}")
+            parts.append(f"{TITLES[name]}\n{_text(_display(summary, name))}")
     return "\n\n".join(parts) + "\n"
