@@ -316,3 +316,13 @@ def test_corners_of_an_earlier_grain_never_count(original, copy, between):
 
     expected = ["ok"] * (1 + between) + ["invalid"]
     assert _statuses(grains) == (expected, expected)
+
+
+def test_a_record_with_an_empty_list_is_invalid_on_both_paths():
+    # The octahedron with face 0's list emptied and its four entries moved to face 5's: the
+    # record keeps a triangulation's length (7n - 11 bytes), so only the empty list tells.
+    octahedron = [[1, 2, 3, 4], [0, 4, 5, 2], [0, 1, 5, 3], [0, 2, 5, 4], [0, 3, 5, 1],
+                  [1, 4, 3, 2]]  # fmt: skip
+    emptied = [[], *octahedron[1:5], octahedron[5] + [1, 2, 3, 4]]
+    assert len(planar_code_record(emptied)) == 7 * 6 - 11
+    assert _statuses([octahedron, emptied]) == (["ok", "invalid"], ["ok", "invalid"])
