@@ -1,7 +1,8 @@
 """``make bench``: how fast and how big, measured in one run on this machine.
 
 Reports (a) plantri alone against plantri piped through ``cat`` (what the pipe itself costs),
-through ``grainclass classify`` and through ``grainclass summarize``, with ratios;
+through ``grainclass classify`` and through ``grainclass summarize``, with ratios (medians of
+rounds that each time plantri alone too: this machine's speed drifts between minutes);
 (b) kernel-only grains per second; (c) 268,402 grains of adjacency text end to end; (d) peak
 resident memory of every run; (e) the first run after installation (numba compiling) against a
 warm run, and ``grainclass --help``; (f) the Voronoi generator; (g) ``grainclass census``
@@ -102,37 +103,62 @@ def _cpu(run: Timing) -> str:
     return f"  cpu {run.user + run.system:6.2f} s (system {run.system:5.2f})"
 
 
-def _ratio(run: Timing, alone: Timing) -> str:
-    return f"{run.seconds:6.2f} s  x{run.seconds / alone.seconds:5.2f}{_cpu(run)}"
+def _rounds(runs: list[Timing], alone: list[Timing]) -> str:
+    """Median wall time and ratio over rounds, each run against plantri alone in its own round
+    (this machine's speed drifts by tens of percent between minutes), the ratios' range, the
+    median CPU time and the largest peak."""
+    ratios = [run.seconds / base.seconds for run, base in zip(runs, alone, strict=True)]
+    middle = Timing(
+        float(np.median([run.seconds for run in runs])),
+        max(run.peak_mb for run in runs),
+        float(np.median([run.user for run in runs])),
+        float(np.median([run.system for run in runs])),
+    )
+    if len(runs) == 1:
+        spread = ""
+    elif runs is alone:  # its ratios are all 1: the range of its times instead
+        spread = (
+            f" ({min(run.seconds for run in runs):.2f}-{max(run.seconds for run in runs):.2f} s)"
+        )
+    else:
+        spread = f" ({min(ratios):4.2f}-{max(ratios):4.2f})"
+    return (
+        f"{middle.seconds:6.2f} s  x{float(np.median(ratios)):5.2f}{spread}{_cpu(middle)}"
+        f"  {middle.peak_mb:5.0f} MB"
+    )
 
 
-def bench_pipelines(sizes: list[int], work: Path) -> None:
+def bench_pipelines(sizes: list[int], rounds: int, work: Path) -> None:
     plantri = find_plantri()
     gc = " ".join(GRAINCLASS)
     out = work / "out.parquet"
     runs = {
+        # What a pipe costs a reader that wakes for each of plantri's 4 kB writes.
+        "cat (the pipe alone)": "cat > /dev/null",
         "classify": f"{gc} classify - -o {out} -q",
         "classify --no-types": f"{gc} classify - -o {out} -q --no-types",
         "summarize": f"{gc} summarize - -q > /dev/null",
         "summarize --types": f"{gc} summarize - -q --types > /dev/null",
     }
     print(
-        "(a) plantri N > /dev/null against plantri N | grainclass ...: wall s, ratio, "
+        "(a) plantri N > /dev/null against plantri N | grainclass ...: wall s and ratio (medians "
+        f"of {rounds} rounds, each against plantri alone in its round; the ratios' range), "
         "CPU s of all processes (system), peak MB"
     )
     for command in runs.values():  # compile whatever the runs use before timing them
         subprocess.run(f"{plantri} 9 2>/dev/null | {command}", shell=True, check=True)
     for n in sizes:
-        alone = timed(f"{plantri} {n} > /dev/null 2>&1")
+        alone: list[Timing] = []
+        piped: dict[str, list[Timing]] = {name: [] for name in runs}
+        for _ in range(rounds):
+            alone.append(timed(f"{plantri} {n} > /dev/null 2>&1"))
+            for name, command in runs.items():
+                piped[name].append(timed(f"{plantri} {n} 2>/dev/null | {command}"))
+            out.unlink(missing_ok=True)
         print(f"    n={n}:")
-        print(f"        plantri alone           {_ratio(alone, alone)}  {alone.peak_mb:5.0f} MB")
-        # What a pipe costs a reader that wakes for each of plantri's 4 kB writes.
-        piped = timed(f"{plantri} {n} 2>/dev/null | cat > /dev/null")
-        print(f"        | cat (the pipe alone)  {_ratio(piped, alone)}  {piped.peak_mb:5.0f} MB")
-        for name, command in runs.items():
-            run = timed(f"{plantri} {n} 2>/dev/null | {command}")
-            print(f"        | {name:21s} {_ratio(run, alone)}  {run.peak_mb:5.0f} MB")
-        out.unlink(missing_ok=True)
+        print(f"        plantri alone           {_rounds(alone, alone)}")
+        for name, timings in piped.items():
+            print(f"        | {name:21s} {_rounds(timings, alone)}")
 
 
 def _kernel_inputs(batch):
@@ -359,6 +385,9 @@ def bench_census(sizes: list[int], parts: int, work: Path) -> None:
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--sizes", type=int, nargs="+", default=[14, 15, 16])
+    parser.add_argument(
+        "--rounds", type=int, default=3, help="rounds of (a), each with plantri alone (default 3)"
+    )
     parser.add_argument("--kernel-sizes", type=int, nargs="+", default=[14, 16])
     parser.add_argument("--census-sizes", type=int, nargs="+", default=[16])
     parser.add_argument("--census-parts", type=int, default=4)
@@ -369,7 +398,7 @@ def main() -> None:
         work = Path(tmp)
         if not args.census_only:
             bench_startup(work)
-            bench_pipelines(args.sizes, work)
+            bench_pipelines(args.sizes, args.rounds, work)
             bench_kernel(args.kernel_sizes, work)
             bench_adjacency(work)
             bench_voronoi(work)
