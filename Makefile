@@ -43,7 +43,7 @@ lint: install
 	$(BIN)/python -m ruff check src tests scripts benchmarks
 	$(BIN)/python -m ruff format --check src tests scripts benchmarks
 
-# Speed and memory, measured in one run (plantri n = 14, 15, 16; a few minutes).
+# Speed and memory, measured in one run (plantri n = 14, 15, 16, three rounds; about ten minutes).
 bench: install
 	$(BIN)/python benchmarks/bench.py
 
