@@ -318,11 +318,34 @@ def test_corners_of_an_earlier_grain_never_count(original, copy, between):
     assert _statuses(grains) == (expected, expected)
 
 
+OCTAHEDRON = [[1, 2, 3, 4], [0, 4, 5, 2], [0, 1, 5, 3], [0, 2, 5, 4], [0, 3, 5, 1], [1, 4, 3, 2]]
+
+
 def test_a_record_with_an_empty_list_is_invalid_on_both_paths():
     # The octahedron with face 0's list emptied and its four entries moved to face 5's: the
     # record keeps a triangulation's length (7n - 11 bytes), so only the empty list tells.
-    octahedron = [[1, 2, 3, 4], [0, 4, 5, 2], [0, 1, 5, 3], [0, 2, 5, 4], [0, 3, 5, 1],
-                  [1, 4, 3, 2]]  # fmt: skip
-    emptied = [[], *octahedron[1:5], octahedron[5] + [1, 2, 3, 4]]
+    emptied = [[], *OCTAHEDRON[1:5], OCTAHEDRON[5] + [1, 2, 3, 4]]
     assert len(planar_code_record(emptied)) == 7 * 6 - 11
-    assert _statuses([octahedron, emptied]) == (["ok", "invalid"], ["ok", "invalid"])
+    assert _statuses([OCTAHEDRON, emptied]) == (["ok", "invalid"], ["ok", "invalid"])
+
+
+# Found by a search over the triangulations with n <= 6, one list doubled and as many entries
+# taken from others: face 5 lists its three neighbours twice, and each of its triangles, closed
+# by the other lists, would count twice, making up for the triangles the removed entries open.
+# Without its repeat check the fast path counts 2n - 4 closed triangles and passes it.
+TWICE_AROUND = [[1, 4, 5], [0, 5, 4, 2], [1, 4, 3], [0, 2, 4], [0, 3, 2, 1, 5], [0, 4, 1, 0, 4, 1]]
+
+
+@pytest.mark.parametrize(
+    "lists",
+    [
+        TWICE_AROUND,
+        # Face 0's neighbour 2 written as 66: the same face once the index is taken modulo 64,
+        # as the fast path's tables take it.
+        [[1, 66, 3, 4], *OCTAHEDRON[1:]],
+    ],
+    ids=["a list twice around", "an index 64 too large"],
+)
+def test_what_only_the_repeat_and_range_checks_reject_is_invalid(lists):
+    assert len(planar_code_record(lists)) == 7 * len(lists) - 11
+    assert _statuses([OCTAHEDRON, lists]) == (["ok", "invalid"], ["ok", "invalid"])
