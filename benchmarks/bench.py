@@ -398,6 +398,8 @@ def main() -> None:
     parser.add_argument("--census-parts", type=int, default=4)
     parser.add_argument("--census-only", action="store_true", help="only (g), the census")
     args = parser.parse_args()
+    if args.rounds < 1:
+        parser.error("--rounds must be at least 1")
     print(f"grainclass benchmarks on {os.cpu_count()} cores, {time.strftime('%Y-%m-%d %H:%M')}")
     with tempfile.TemporaryDirectory() as tmp:
         work = Path(tmp)
