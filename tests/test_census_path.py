@@ -14,6 +14,7 @@ import struct
 import sys
 
 import numpy as np
+import pandas as pd
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
@@ -21,8 +22,8 @@ from hypothesis import strategies as st
 from grainclass.classification import grain_codes
 from grainclass.pipeline import tallies
 from grainclass.readers.planar_code import PlanarCodeRecords, read_planar_code
-from grainclass.summary import group_rows, summarize, tally_batch
-from strategies import bipyramid, planar_code_record
+from grainclass.summary import group_rows, merge_tallies, summarize, tally_batch
+from strategies import bipyramid, planar_code_record, rotation_lists
 
 FIELDS = ("n_faces", "status", "family", "truncations", "class_code", "split_k", "triangles")
 
@@ -40,7 +41,18 @@ def _assert_same(data: bytes) -> int:
     for a, b in zip(raw, csr, strict=True):
         for name in FIELDS:
             np.testing.assert_array_equal(getattr(a, name), getattr(b, name), err_msg=name)
+    _assert_same_tallies(data)
     return sum(len(a.status) for a in raw)
+
+
+def _assert_same_tallies(data: bytes, chunk_size: int = 1000) -> pd.DataFrame:
+    """The counts of records tallied as they are classified (``summary._tally_records``) and
+    of the CSR path's per-grain codes grouped with numpy agree; returns them."""
+    raw = read_planar_code(io.BytesIO(data), "x", chunk_size, raw=True)
+    csr = read_planar_code(io.BytesIO(data), "x", chunk_size)
+    counted = merge_tallies([tally_batch(b).counts for b in raw])
+    pd.testing.assert_frame_equal(counted, merge_tallies([tally_batch(b).counts for b in csr]))
+    return counted
 
 
 def _record_ends(data: bytes) -> list[int]:
@@ -146,6 +158,41 @@ def test_large_and_wide_records_take_the_general_way():
     wide_codes = [grain_codes(b) for b in read_planar_code(io.BytesIO(wide), "x", 10, raw=True)]
     assert wide_codes[0].n_faces.tolist() == [6]
     assert wide_codes[0].split_k.tolist() == [1]  # the cube: split type 1:1
+
+
+def _truncated_prism(k: int, t: int) -> list[list[int]]:
+    """The dual of the k-gonal prism truncated t times in a chain (each new triangle cut at one
+    of its corners), as rotation lists: a flag grain with k + 2 + t faces and one truncation
+    tree of depth t."""
+    lists = bipyramid(k)
+    faces = {(v, nbrs[i - 1], nbrs[i]) for v, nbrs in enumerate(lists) for i in range(len(nbrs))}
+    faces = {f for f in faces if f[0] == min(f)}  # each triangle once
+    a, b, c = min(faces)
+    for w in range(k + 2, k + 2 + t):
+        faces -= {(a, b, c)}
+        faces |= {(a, b, w), (b, c, w), (c, a, w)}
+        c = w  # the next cut is at a corner of the triangle just made
+    return rotation_lists(faces, k + 2 + t)
+
+
+def test_records_tally_grows_its_table_past_its_first_size():
+    # One batch with 777 groups (the kernel's table starts at 1,024 slots and doubles at half
+    # full): a k-prism truncated t times, k = 4..40, t = 0..20, is flag with round t and
+    # k + 2 + t faces. Its split type (t = 0 only) is (k - 2) // 2: a 4-belt runs over both
+    # k-gons and two quadrilaterals, which leaves the others in two runs, of k - 2 in all.
+    records = [planar_code_record(_truncated_prism(k, t)) for k in range(4, 41) for t in range(21)]
+    counted = _assert_same_tallies(b">>planar_code<<" + b"".join(records), chunk_size=10_000)
+    assert len(counted) == 37 * 21
+    assert (counted["count"] == 1).all()
+    assert set(counted["family"]) == {"flag"}
+    expected = {(k + 2 + t, t) for k in range(4, 41) for t in range(21)}
+    pairs = zip(counted["n_faces"].astype(int), counted["round_k"].astype(int), strict=True)
+    assert set(pairs) == expected
+    classes = dict(zip(counted["round_k"], counted["class"], strict=False))
+    assert [classes[t] for t in range(4)] == ["flag", "flag+1", "flag+2", "flag>=3"]
+    prisms = counted[counted["round_k"] == 0]
+    assert (prisms["split_k"] == (prisms["n_faces"] - 4) // 2).all()  # (k - 2) // 2
+    assert counted.loc[counted["round_k"] > 0, "split_k"].isna().all()
 
 
 def test_summary_from_bytes_equals_summary_from_classified_rows(plantri_output):

@@ -67,21 +67,12 @@ def _error_messages(batch: GrainBatch, status: np.ndarray, err: np.ndarray) -> l
 
 
 def _class_codes(family: np.ndarray, truncations: np.ndarray, n_trees: np.ndarray) -> np.ndarray:
-    """Index into ``schema.CLASSES`` per grain, -1 when not ok."""
-    flag = family == codes.FLAG
-    sc = family == codes.SC
-    conditions = [
-        family == codes.STACKED,
-        flag & (truncations == 0),
-        flag & (truncations == 1),
-        flag & (truncations == 2) & (n_trees == 2),
-        flag & (truncations == 2) & (n_trees == 1),
-        flag & (truncations >= 3),
-        sc & (truncations == 0),
-        sc & (truncations == 1),
-        sc & (truncations >= 2),
+    """Index into ``schema.CLASSES`` per grain (``codes.CLASS_OF``), -1 when not ok."""
+    ok = family >= 0
+    by_family = codes.CLASS_OF[
+        np.where(ok, family, 0), np.clip(truncations, 0, 3), (n_trees == 2).view(np.int8)
     ]
-    return np.select(conditions, np.arange(len(conditions)), -1)
+    return np.where(ok, by_family, -1)
 
 
 def _floats(values: np.ndarray | None, length: int) -> pa.Array:
@@ -187,8 +178,9 @@ def _classify_csr(batch: GrainBatch, max_small: int, strings: bool) -> _Classifi
     return out
 
 
-def _pending_records(batch: PlanarCodeRecords, pending: np.ndarray) -> GrainBatch:
-    """The records the fast path left, as a CSR batch (the general path reads CSR)."""
+def records_as_csr(batch: PlanarCodeRecords, pending: np.ndarray) -> GrainBatch:
+    """The records ``pending`` (those the fast path left) as a CSR batch, which the general
+    path reads."""
     import io
 
     from grainclass.readers.planar_code import read_planar_code
@@ -202,7 +194,8 @@ def _pending_records(batch: PlanarCodeRecords, pending: np.ndarray) -> GrainBatc
 def grain_codes(batch: GrainBatch | PlanarCodeRecords) -> GrainCodes:
     """Classify a batch for counting only: no truncation-forest strings, no types.
 
-    planar_code records are classified straight from their bytes (the census path).
+    planar_code records are classified straight from their bytes (the census counts them
+    without codes per grain: ``summary.tally_batch``).
     """
     from grainclass._kernels.batch import _classify_records
 
@@ -233,7 +226,7 @@ def grain_codes(batch: GrainBatch | PlanarCodeRecords) -> GrainCodes:
     codes_ = _grain_codes(n_faces, status, family, fundamental, n_trees, belts[:, 0], triangles)
     pending = np.flatnonzero(status == codes.PENDING)
     if len(pending):
-        general = grain_codes(_pending_records(batch, pending))
+        general = grain_codes(records_as_csr(batch, pending))
         for name in GrainCodes.__dataclass_fields__:
             getattr(codes_, name)[pending] = getattr(general, name)
     return codes_

@@ -145,7 +145,10 @@ def tally_batch(
     truncation-tree strings): the census path of ``summarize``. With ``types`` (a CSR batch
     only) the Weinberg vectors are computed too, for the distinct types."""
     from grainclass.classification import grain_codes, grain_codes_and_type_hashes
+    from grainclass.readers.planar_code import PlanarCodeRecords
 
+    if isinstance(batch, PlanarCodeRecords) and not types:
+        return _tally_records(batch)
     code_hashes = None
     if types:
         codes, code_hashes = grain_codes_and_type_hashes(batch)
@@ -180,30 +183,78 @@ def tally_batch(
     def sums(weights: np.ndarray) -> np.ndarray:
         return np.bincount(group, weights, minlength=groups)
 
-    if q is None:  # no geometry: every grain's q is null
-        q_count, q_sum, q_squares = np.zeros(groups, np.int64), np.zeros(groups), np.zeros(groups)
-    else:
+    q_sums = None
+    if q is not None:
         has_q = ~np.isnan(q)
-        q_count = sums(has_q).astype(np.int64)
-        q_sum = sums(np.where(has_q, q, 0.0))
-        q_squares = sums(np.where(has_q, q * q, 0.0))
+        q_sums = (
+            sums(has_q).astype(np.int64),
+            sums(np.where(has_q, q, 0.0)),
+            sums(np.where(has_q, q * q, 0.0)),
+        )
     rows = [column[first] for column in keys]
-    counts = pd.DataFrame(
-        {
-            schema.STATUS: _names(rows[0], kernel_codes.STATUS_NAMES),
-            schema.N_FACES: np.where(rows[3] >= 0, rows[3], np.nan),
-            schema.FAMILY: _names(rows[1], kernel_codes.FAMILY_NAMES),
-            schema.CLASS: _names(rows[2], schema.CLASSES),
-            schema.ROUND_K: np.where(rows[4] >= 0, rows[4], np.nan),
-            schema.SPLIT_K: np.where(rows[5] >= 0, rows[5], np.nan),
-            TRIANGLES: sums(triangles).astype(np.int64),
-            COUNT: np.bincount(group, minlength=groups),
-            Q_COUNT: q_count,
-            Q_SUM: q_sum,
-            Q_SQUARES: q_squares,
-        }
+    counts = _counts(
+        *rows, sums(triangles).astype(np.int64), np.bincount(group, minlength=groups), q_sums
     )
     return Tally(counts, kept, hashes, boundary_excluded=len(batch) - kept)
+
+
+def _tally_records(batch: PlanarCodeRecords) -> Tally:
+    """:func:`tally_batch` of planar_code records: counted in the kernel as they are classified
+    (``_kernels.batch._tally_records``); the records it leaves (not on the fast path) are read
+    as CSR lists and counted as any other batch."""
+    from grainclass._kernels.batch import _tally_records as tally_kernel
+    from grainclass._kernels.batch import census_fields
+    from grainclass._kernels.groups import EMPTY
+    from grainclass.classification import records_as_csr
+
+    table, sums, pending = tally_kernel(batch.buf, batch.starts, batch.big_endian)
+    used = table != EMPTY
+    family, class_code, n_faces, round_k, split_k = census_fields(table[used])
+    parts = []
+    if len(family):
+        status = np.full(len(family), kernel_codes.OK)
+        grains, triangles = sums[used, 0], sums[used, 1]
+        parts.append(
+            _counts(status, family, class_code, n_faces, round_k, split_k, triangles, grains)
+        )
+    if len(pending):
+        parts.append(tally_batch(records_as_csr(batch, pending)).counts)
+    counts = parts[0] if len(parts) == 1 else pd.concat(parts, ignore_index=True)
+    return Tally(counts, len(batch))
+
+
+def _counts(
+    status: np.ndarray,
+    family: np.ndarray,
+    class_code: np.ndarray,
+    n_faces: np.ndarray,
+    round_k: np.ndarray,
+    split_k: np.ndarray,
+    triangles: np.ndarray,
+    count: np.ndarray,
+    q_sums: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None,
+) -> pd.DataFrame:
+    """A tally's rows from the codes of its groups (-1 for null), their sums of triangular faces
+    and grains and, where grains have an isoperimetric quotient, its count, sum and sum of
+    squares."""
+    groups = len(count)
+    if q_sums is None:  # no geometry: every grain's q is null
+        q_sums = np.zeros(groups, np.int64), np.zeros(groups), np.zeros(groups)
+    return pd.DataFrame(
+        {
+            schema.STATUS: _names(status, kernel_codes.STATUS_NAMES),
+            schema.N_FACES: np.where(n_faces >= 0, n_faces, np.nan),
+            schema.FAMILY: _names(family, kernel_codes.FAMILY_NAMES),
+            schema.CLASS: _names(class_code, schema.CLASSES),
+            schema.ROUND_K: np.where(round_k >= 0, round_k, np.nan),
+            schema.SPLIT_K: np.where(split_k >= 0, split_k, np.nan),
+            TRIANGLES: triangles,
+            COUNT: count,
+            Q_COUNT: q_sums[0],
+            Q_SUM: q_sums[1],
+            Q_SQUARES: q_sums[2],
+        }
+    )
 
 
 def _distinct(hashes: list[np.ndarray]) -> int | None:

@@ -5,15 +5,17 @@ scratch (``small.py``); the fast kernels mark every other grain PENDING, for
 :func:`_classify_general_batch`, which allocates per grain but diagnoses anything
 (``validate.py``, ``reduce.py``, ``belts.py``). It is a kernel of its own so that it is compiled
 only when some input needs it (it is most of the compilation). Two layouts come in: CSR arrays
-(:func:`_classify_batch`, any reader) and plantri's planar_code bytes
-(:func:`_classify_records`, validated in place, for the census).
+(:func:`_classify_batch`, any reader) and plantri's planar_code bytes, validated in place:
+:func:`_classify_records` writes codes per grain, :func:`_tally_records` (the census) only
+counts the grains by group.
 """
 
 import numpy as np
 
 from grainclass._kernels.belts import _four_belts
 from grainclass._kernels.bits import MAX_BITSET_FACES, ONE, ZERO, lowest, popcount
-from grainclass._kernels.codes import E_PARSE, FLAG, INVALID, OK, PENDING, SC, STACKED
+from grainclass._kernels.codes import CLASS_OF, E_PARSE, FLAG, INVALID, OK, PENDING, SC, STACKED
+from grainclass._kernels.groups import EMPTY, FIRST_SLOTS, doubled, slot
 from grainclass._kernels.planar_code import _entry
 from grainclass._kernels.reduce import _has_empty_triangle, _reduce
 from grainclass._kernels.small import (
@@ -210,6 +212,34 @@ def _classify_general_batch(
                 trees_count[g], depth[g], tree_length[g] = result[3], result[4], result[5]
 
 
+@njit(inline="always")
+def _small_record(buf, starts, r, big_endian, adj, following, stamp):
+    """``(n, fast)`` for record r of ``buf``: its vertex count, and whether it is a
+    triangulation in 1-byte entries with at most 64 vertices that the fast path validates in
+    place (:func:`small._validate_record`; the bitsets are then in ``adj``)."""
+    p = starts[r]
+    wide = buf[p] == 0
+    q = p + 1 if wide else p
+    n = _entry(buf, q, wide, big_endian)
+    # 1 + n + (6n - 12) bytes: a triangulation's worth of entries.
+    if wide or n > MAX_BITSET_FACES or starts[r + 1] - p != 7 * n - 11:
+        return n, False
+    return n, _validate_record(buf, q + 1, n, adj, following, stamp)
+
+
+@njit(inline="always")
+def _count_small(g, n, work, adj, link, family, fundamental, belts):
+    """:func:`_classify_small` of a validated grain g, as the census needs it: returns its
+    triangular faces (vertices of degree 3) and its number of truncation trees (``adj`` and
+    ``link`` are work[0] and work[2]: the tuple's items unpacked in here cost time)."""
+    triangles = 0
+    for v in range(n):
+        triangles += popcount(adj[v]) == 3
+    alive = _classify_small(g, n, work, family, fundamental, belts)
+    trees = _roots_small(alive, n, link) if 4 < fundamental[g] < n else 0
+    return triangles, trees
+
+
 @njit
 def _classify_records(
     first,
@@ -228,37 +258,87 @@ def _classify_records(
     """The fast path without strings, straight from planar_code records: record r is
     ``buf[starts[r]:starts[r + 1]]`` (complete, as ``planar_code._scan`` found it).
     ``n_faces[r]`` gets its vertex count, ``triangles[r]`` its vertices of degree 3 (the
-    grain's triangular faces) when it is ok.
-
-    A triangulation in 1-byte entries with at most 64 vertices is validated in place
-    (:func:`small._validate_record`); any other record is left PENDING, for the general path
-    on CSR arrays.
+    grain's triangular faces) when it is ok. Any record that :func:`_small_record` does not
+    validate is left PENDING, for the general path on CSR arrays.
     """
     work = _work()
-    _, following, links, _, _ = work
+    adj, following, link, _, _ = work
     stamp = 0
     for r in range(first, last):
-        p = starts[r]
-        wide = buf[p] == 0
-        q = p + 1 if wide else p
-        n = _entry(buf, q, wide, big_endian)
+        stamp = next_stamp(following, stamp)
+        n, fast = _small_record(buf, starts, r, big_endian, adj, following, stamp)
         n_faces[r] = n
         family[r] = -1
-        # 1 + n + (6n - 12) bytes: a triangulation's worth of entries.
-        stamp = next_stamp(following, stamp)
-        if (
-            not wide
-            and n <= MAX_BITSET_FACES
-            and starts[r + 1] - p == 7 * n - 11
-            and _validate_record(buf, q + 1, n, work[0], following, stamp)
-        ):
+        if fast:
             status[r] = OK
-            cubic = 0
-            for v in range(n):
-                cubic += popcount(work[0][v]) == 3
-            triangles[r] = cubic
-            alive = _classify_small(r, n, work, family, fundamental, belts)
-            if 4 < fundamental[r] < n:
-                trees_count[r] = _roots_small(alive, n, links)
+            triangles[r], trees_count[r] = _count_small(
+                r, n, work, adj, link, family, fundamental, belts
+            )
         else:
             status[r] = PENDING
+
+
+@njit(inline="always")
+def census_key(n, family, truncations, trees, split):
+    """The group an ok grain of at most 64 faces is counted in: family, class, faces, round
+    (truncations, -1 for sc) and split (-1 unless fundamental flag), each shifted to be >= 0,
+    in 8 bits apiece (:func:`census_fields` reads them back)."""
+    class_code = CLASS_OF[family, min(truncations, 3), 1 if trees == 2 else 0]
+    round_k = -1 if family == SC else truncations
+    split_k = split if family == FLAG and truncations == 0 else -1
+    key = (int(family) + 1) * 256 + int(class_code) + 1  # int(): no int8 wrap-around without JIT
+    return ((key * 256 + int(n)) * 256 + int(round_k) + 1) * 256 + int(split_k) + 1
+
+
+def census_fields(keys):
+    """``(family, class_code, n_faces, round_k, split_k)`` of :func:`census_key` values."""
+    keys = np.asarray(keys, np.int64)
+    return (
+        (keys >> 32) - 1,
+        ((keys >> 24) & 255) - 1,
+        (keys >> 16) & 255,
+        ((keys >> 8) & 255) - 1,
+        (keys & 255) - 1,
+    )
+
+
+@njit
+def _tally_records(buf, starts, big_endian):
+    """The census of a batch of planar_code records without a row per grain: each record that
+    :func:`_small_record` validates is classified and added to its group, ``census_key``
+    (family, class, faces, round, split; all ok). Returns the hash table of keys (``EMPTY``
+    where free), its sums per slot (grains, triangular faces) and the records left for the
+    general path. Nothing per grain is written, so nothing is read back: grouping per-grain
+    codes with numpy took ~100 ns a grain at n = 16 (a third of the kernel's time), its passes
+    over the batch finding the arrays out of cache and their fresh pages to fault in.
+    """
+    work = _work()
+    adj, following, link, _, _ = work
+    stamp = 0
+    family = np.empty(1, np.int8)
+    fundamental = np.empty(1, np.int32)
+    belts = np.zeros((1, 3), np.int64)
+    table = np.full(FIRST_SLOTS, EMPTY, np.int64)
+    sums = np.zeros((FIRST_SLOTS, 2), np.int64)
+    groups = 0
+    pending = np.empty(len(starts) - 1, np.int64)
+    n_pending = 0
+    for r in range(len(starts) - 1):
+        stamp = next_stamp(following, stamp)
+        n, fast = _small_record(buf, starts, r, big_endian, adj, following, stamp)
+        if not fast:
+            pending[n_pending] = r
+            n_pending += 1
+            continue
+        triangles, trees = _count_small(0, n, work, adj, link, family, fundamental, belts)
+        key = census_key(n, family[0], n - fundamental[0], trees, belts[0, 0])
+        s = slot(table, key)
+        if table[s] == EMPTY:
+            table[s] = key
+            groups += 1
+            if 2 * groups > table.size:
+                table, sums = doubled(table, sums)
+                s = slot(table, key)
+        sums[s, 0] += 1
+        sums[s, 1] += triangles
+    return table, sums, pending[:n_pending]

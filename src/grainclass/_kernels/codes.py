@@ -1,7 +1,9 @@
 """Integer codes that the kernels write and the Python wrappers turn into words.
 
-Kept as plain module-level ints so that numba folds them as constants.
+Kept as plain module-level ints (and one constant array) so that numba folds them as constants.
 """
+
+import numpy as np
 
 # Grain status (the ``status`` column); PENDING only between the fast and the general path.
 PENDING = -1
@@ -33,3 +35,15 @@ STACKED = 0
 FLAG = 1
 SC = 2
 FAMILY_NAMES = ("stacked", "flag", "sc")
+
+# A grain's class (an index into ``schema.CLASSES``) by [family, min(truncations, 3), whether it
+# has two truncation trees]: the kernels that count read it per grain, the Python wrappers with
+# numpy's indexing, so the classes are defined once.
+CLASS_OF = np.array(
+    [
+        [[0, 0], [0, 0], [0, 0], [0, 0]],  # stacked
+        [[1, 1], [2, 2], [4, 3], [5, 5]],  # flag, flag+1, flag+2 (one tree) or flag+1+1, flag>=3
+        [[6, 6], [7, 7], [8, 8], [8, 8]],  # sc, sc+1, sc>=2
+    ],
+    np.int8,
+)

@@ -1,50 +1,63 @@
 """Grouping equal keys in one pass with a hash table, where ``np.unique`` would sort.
 
 A batch of a census has tens of thousands of grains but only a few hundred distinct
-(status, n, family, class, round, split) keys: hashing them is linear, sorting is not.
+(status, n, family, class, round, split) keys: hashing them is linear, sorting is not. Keys are
+non-negative int64; the table is open addressing, doubled whenever it is half full, with a row
+of int64 values per slot (a group's index, or its running sums).
 """
 
 import numpy as np
 
 from grainclass._numba import njit
 
-_EMPTY = -1
+EMPTY = -1  # a free slot of the table
+FIRST_SLOTS = 1024
+
+
+@njit(inline="always")
+def slot(table, key):
+    """Where ``key`` is in ``table``, or the free slot where it goes."""
+    mask = table.size - 1
+    # Fibonacci hashing: the top bits of key * 2**64 / phi spread consecutive keys apart.
+    s = np.int64((np.uint64(key) * np.uint64(11400714819323198485)) >> np.uint64(32)) & mask
+    while table[s] != EMPTY and table[s] != key:
+        s = (s + 1) & mask
+    return s
+
+
+@njit
+def doubled(table, values):
+    """``table`` and its ``values`` (one row per slot) rehashed into twice the slots."""
+    bigger = np.full(2 * table.size, EMPTY, np.int64)
+    moved = np.zeros((2 * table.size, values.shape[1]), np.int64)
+    for s in range(table.size):
+        if table[s] != EMPTY:
+            t = slot(bigger, table[s])
+            bigger[t] = table[s]
+            moved[t] = values[s]
+    return bigger, moved
 
 
 @njit
 def _group_keys(keys):
     """``(first, group)`` for int64 ``keys``: the first row of each distinct key, in order of
-    first appearance, and each row's index into ``first``. Open addressing, the table doubled
-    whenever it is half full."""
+    first appearance, and each row's index into ``first``."""
     n = keys.shape[0]
-    size = 1024
-    slots = np.full(size, _EMPTY, np.int64)  # a group's index, or _EMPTY
+    table = np.full(FIRST_SLOTS, EMPTY, np.int64)
+    index = np.empty((FIRST_SLOTS, 1), np.int64)  # each key's group
     first = np.empty(n, np.int64)
     group = np.empty(n, np.int64)
     groups = 0
     for i in range(n):
         key = keys[i]
-        # Fibonacci hashing: the top bits of key * 2**64 / phi spread consecutive keys apart.
-        h = np.int64((np.uint64(key) * np.uint64(11400714819323198485)) >> np.uint64(32))
-        mask = size - 1
-        s = h & mask
-        while slots[s] != _EMPTY and keys[first[slots[s]]] != key:
-            s = (s + 1) & mask
-        if slots[s] == _EMPTY:
-            slots[s] = groups
+        s = slot(table, key)
+        if table[s] == EMPTY:
+            table[s] = key
+            index[s, 0] = groups
             first[groups] = i
             groups += 1
-            if 2 * groups > size:
-                size *= 2
-                slots = np.full(size, _EMPTY, np.int64)
-                mask = size - 1
-                for g in range(groups):
-                    hg = np.uint64(keys[first[g]]) * np.uint64(11400714819323198485)
-                    t = np.int64(hg >> np.uint64(32)) & mask
-                    while slots[t] != _EMPTY:
-                        t = (t + 1) & mask
-                    slots[t] = g
-            group[i] = groups - 1
-        else:
-            group[i] = slots[s]
+            if 2 * groups > table.size:
+                table, index = doubled(table, index)
+                s = slot(table, key)
+        group[i] = index[s, 0]
     return first[:groups].copy(), group
