@@ -288,6 +288,37 @@ def test_help_imports_nothing_heavy():
     assert result.stdout.splitlines()[-1] == "[]"
 
 
+def test_garbage_collection_is_off_for_start_up_only(tmp_path):
+    """main() keeps the cyclic collector off while the libraries load; it is back on, with what
+    start-up made frozen out of its reach, as the first batch comes through."""
+    code = (
+        "import gc, sys\n"
+        "from grainclass import cli\n"
+        "made, passed = [], []\n"
+        "def batches(items):\n"
+        "    for item in items:\n"
+        "        made.append(gc.isenabled())\n"
+        "        yield item\n"
+        "resume = cli._after_start_up\n"
+        "def spy(items):\n"
+        "    for item in resume(batches(items)):\n"
+        "        passed.append(gc.isenabled())\n"
+        "        yield item\n"
+        "cli._after_start_up = spy\n"
+        "sys.argv = ['grainclass', *sys.argv[1:]]\n"
+        "try:\n    cli.main()\nexcept SystemExit as exc:\n    assert not exc.code, exc.code\n"
+        "print(made, passed, gc.isenabled(), gc.get_freeze_count() > 0)\n"
+    )
+    for command in (["classify", "-o", str(tmp_path / "out.parquet")], ["summarize"]):
+        args = [*command, str(EXAMPLES / "plantri-10.pc"), "--chunk-size", "100", "-q"]
+        result = subprocess.run(
+            [sys.executable, "-c", code, *args], capture_output=True, text=True, check=True
+        )
+        # 233 triangulations in chunks of 100: three batches.
+        last = result.stdout.splitlines()[-1]
+        assert last == "[False, True, True] [True, True, True] True True", command
+
+
 def test_classify_never_imports_pandas(tmp_path):
     """pandas costs 0.3 s to import and classify has no use for it (pyarrow's pa.array would
     import it just to ask whether its input is a pandas object)."""

@@ -8,10 +8,14 @@ from __future__ import annotations
 import gc
 import os
 import sys
+from collections.abc import Iterable, Iterator
+from typing import TypeVar
 
 import click
 
 from grainclass import DEFAULT_CHUNK_SIZE, __version__
+
+T = TypeVar("T")
 
 EXIT_CODES = """\b
 Exit codes:
@@ -113,6 +117,25 @@ def _set_jobs(jobs: int | None) -> None:
         set_jobs(jobs)
 
 
+def _after_start_up(items: Iterable[T]) -> Iterator[T]:
+    """``items``, with the cyclic garbage collector (off since :func:`main`) back on once the
+    first has come through, or once there are none."""
+    try:
+        for item in items:
+            _resume_collection()
+            yield item
+    finally:
+        _resume_collection()
+
+
+def _resume_collection() -> None:
+    """Collect cyclic garbage from now on, except among the objects made so far (the imported
+    libraries, the kernels loaded from numba's cache), which live as long as the process."""
+    if not gc.isenabled():
+        gc.freeze()
+        gc.enable()
+
+
 def _progress(quiet: bool):
     from grainclass.pipeline import Progress
 
@@ -158,7 +181,7 @@ def classify_cmd(
     try:
         with GrainTableWriter(output) as writer:
             tables = classified_tables(list(inputs), fmt, chunk_size, triple_edges, types)
-            for table in progress.wrap(tables):
+            for table in progress.wrap(_after_start_up(tables)):
                 for item in table.column("status").value_counts().to_pylist():
                     counts[item["values"]] = counts.get(item["values"], 0) + item["counts"]
                 writer.write(table)
@@ -241,7 +264,9 @@ def summarize_cmd(
     in_fmt = None if input_format == "auto" else input_format
     try:
         stream = tallies(list(grains), in_fmt, chunk_size, triple_edges, types, include_boundary)
-        summary = summarize(_progress(quiet).wrap(stream), n_values, include_boundary)
+        summary = summarize(
+            _progress(quiet).wrap(_after_start_up(stream)), n_values, include_boundary
+        )
     except GrainclassError as exc:
         raise click.ClickException(str(exc)) from None
     _write(output, _as_bytes(render(summary, tables, fmt)))
@@ -301,7 +326,9 @@ def types_cmd(
     in_fmt = None if input_format == "auto" else input_format
     try:
         stream = grain_tables(list(grains), COLUMNS, in_fmt, chunk_size, triple_edges)
-        table = type_frequencies(_progress(quiet).wrap(stream), n_faces, class_name)
+        table = type_frequencies(
+            _progress(quiet).wrap(_after_start_up(stream)), n_faces, class_name
+        )
     except GrainclassError as exc:
         raise click.ClickException(str(exc)) from None
     if vorotop:
@@ -339,6 +366,7 @@ def voronoi_cmd(n_seeds: int, seed: int | None, box: float, output: str, quiet: 
     from grainclass.pipeline import Progress
     from grainclass.voronoi import VoronoiReport, poisson_voronoi
 
+    _resume_collection()
     report = VoronoiReport()
     progress = Progress(enabled=not quiet and sys.stderr.isatty())
     if progress.enabled:
@@ -445,6 +473,7 @@ def census_cmd(
     from grainclass.census import ProgressPrinter, dask_client, run_census
     from grainclass.errors import GrainclassError
 
+    _resume_collection()
     try:
         import distributed  # noqa: F401 (the census extra)
     except ImportError as exc:
@@ -525,8 +554,15 @@ def main() -> None:
     # Readers build millions of short-lived lists (freed by reference counting, not in
     # cycles); at the default thresholds the cyclic collector's passes over them and over the
     # imported libraries took half of the time of reading face-loop text. It still runs, less
-    # often.
+    # often, but not during start-up: importing numba, pandas and pyarrow and loading the
+    # kernels makes some 230,000 objects for good, and passes over them took a third of a
+    # warm run (0.3 of 1.0 s). The commands turn it on when their first batch is through.
     gc.set_threshold(100_000, 50, 1000)
+    gc.disable()
+    # numpy's OpenBLAS starts a thread per core when it is imported, which spin a while waiting
+    # for matrices (0.1 s of CPU, taken from a producer such as plantri in the same pipe);
+    # grainclass multiplies none large enough to use them.
+    os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
     try:
         code = cli.main(standalone_mode=False)
     except click.ClickException as exc:
