@@ -219,13 +219,14 @@ def _first_million(path: Path, raw: bool) -> list:
 def bench_kernel(sizes: list[int], work: Path) -> None:
     from grainclass._kernels.batch import _classify_batch
     from grainclass._kernels.weinberg import _weinberg_batch
-    from grainclass.classification import classify, grain_codes
-    from grainclass.parallel import run_ranges, set_jobs
+    from grainclass.classification import classify
+    from grainclass.parallel import map_ordered, run_ranges, set_jobs
+    from grainclass.summary import tally_batch
 
     plantri = find_plantri()
     print(
         f"(b) in process, M grains/s, the best of {PASSES} passes (other loads on the machine "
-        "only ever slow a pass): census, grain_codes() on planar_code bytes | "
+        "only ever slow a pass): census, tally_batch() of planar_code bytes (a batch a thread) | "
         "classification kernel (CSR, with truncation-tree strings) | Weinberg kernel | "
         "classify() | classify(types=False)"
     )
@@ -237,12 +238,12 @@ def bench_kernel(sizes: list[int], work: Path) -> None:
         grains = sum(len(b) for b in batches)
         inputs = [_kernel_inputs(b) for b in batches]
         classify(batches[0])
-        grain_codes(records[0])
+        tally_batch(records[0])
         for threads in sorted({1, os.cpu_count() or 1}):
             set_jobs(threads)
             rates = []
             for run in (
-                lambda records=records: [grain_codes(r) for r in records],
+                lambda records=records: list(map_ordered(tally_batch, records)),
                 lambda inputs=inputs: [
                     run_ranges(_classify_batch, i["n"], *i["classify"]) for i in inputs
                 ],

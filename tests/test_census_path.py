@@ -19,39 +19,33 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from grainclass.classification import grain_codes
 from grainclass.pipeline import tallies
 from grainclass.readers.planar_code import PlanarCodeRecords, read_planar_code
 from grainclass.summary import group_rows, merge_tallies, summarize, tally_batch
 from strategies import bipyramid, planar_code_record, rotation_lists
 
-FIELDS = ("n_faces", "status", "family", "truncations", "class_code", "split_k", "triangles")
 
-
-def _both_paths(data: bytes, chunk_size: int = 1000):
-    """grain_codes of every record, read as bytes and read as CSR batches."""
-    raw = list(read_planar_code(io.BytesIO(data), "x", chunk_size, raw=True))
-    csr = list(read_planar_code(io.BytesIO(data), "x", chunk_size))
-    assert [len(b) for b in raw] == [len(b) for b in csr]
-    return [grain_codes(b) for b in raw], [grain_codes(b) for b in csr]
+def _tallies(data: bytes, raw: bool, chunk_size: int) -> list[pd.DataFrame]:
+    batches = read_planar_code(io.BytesIO(data), "x", chunk_size, raw=raw)
+    return [tally_batch(b).counts for b in batches]
 
 
 def _assert_same(data: bytes) -> int:
-    raw, csr = _both_paths(data)
-    for a, b in zip(raw, csr, strict=True):
-        for name in FIELDS:
-            np.testing.assert_array_equal(getattr(a, name), getattr(b, name), err_msg=name)
+    """Records counted from their bytes (``summary._tally_records``) and from CSR lists (the
+    per-grain codes grouped with numpy) agree in batches and one record at a time, where each
+    tally is the group of its one grain; returns the number of records."""
     _assert_same_tallies(data)
-    return sum(len(a.status) for a in raw)
+    raw, csr = _tallies(data, True, 1), _tallies(data, False, 1)
+    assert len(raw) == len(csr)
+    for a, b in zip(raw, csr, strict=True):
+        pd.testing.assert_frame_equal(a, b)
+    return len(raw)
 
 
 def _assert_same_tallies(data: bytes, chunk_size: int = 1000) -> pd.DataFrame:
-    """The counts of records tallied as they are classified (``summary._tally_records``) and
-    of the CSR path's per-grain codes grouped with numpy agree; returns them."""
-    raw = read_planar_code(io.BytesIO(data), "x", chunk_size, raw=True)
-    csr = read_planar_code(io.BytesIO(data), "x", chunk_size)
-    counted = merge_tallies([tally_batch(b).counts for b in raw])
-    pd.testing.assert_frame_equal(counted, merge_tallies([tally_batch(b).counts for b in csr]))
+    """The counts of :func:`_assert_same`, batch by batch, merged; returns them."""
+    counted = merge_tallies(_tallies(data, True, chunk_size))
+    pd.testing.assert_frame_equal(counted, merge_tallies(_tallies(data, False, chunk_size)))
     return counted
 
 
@@ -120,9 +114,8 @@ def test_bytes_and_csr_paths_agree_on_planar_graphs_that_are_not_triangulations(
     plantri_output, n, flags
 ):
     data = plantri_output(n, flags).read_bytes()
-    raw, _ = _both_paths(data)
-    assert any((codes.status != 0).any() for codes in raw)  # most are not simple grains
-    _assert_same(data)
+    counted = _assert_same_tallies(data)
+    assert set(counted["status"]) > {"ok"}  # most are not simple grains
 
 
 def test_bytes_and_csr_paths_agree_on_damaged_records(plantri_output):
@@ -148,16 +141,17 @@ def test_large_and_wide_records_take_the_general_way():
     for nbrs in bipyramid(4):
         wide += b"".join(struct.pack("<H", x + 1) for x in nbrs) + struct.pack("<H", 0)
     data = b">>planar_code<<" + planar_code_record(prism_dual) + planar_code_record(bipyramid(5))
-    raw, _ = _both_paths(data)
-    assert raw[0].n_faces.tolist() == [70, 7]
-    # The 68- and 5-gonal prisms: flag, fundamental, two triangles.
-    assert raw[0].status.tolist() == [0, 0]
-    assert raw[0].triangles.tolist() == [0, 0]
-    assert raw[0].truncations.tolist() == [0, 0]
-    _assert_same(data)
-    wide_codes = [grain_codes(b) for b in read_planar_code(io.BytesIO(wide), "x", 10, raw=True)]
-    assert wide_codes[0].n_faces.tolist() == [6]
-    assert wide_codes[0].split_k.tolist() == [1]  # the cube: split type 1:1
+    # The 68- and 5-gonal prisms: ok, flag and fundamental, no triangular faces, split types
+    # (k - 2) // 2 (see the test above).
+    columns = ["n_faces", "status", "family", "round_k", "split_k", "triangles", "count"]
+    counted = _assert_same_tallies(data)
+    assert counted[columns].values.tolist() == [
+        [7, "ok", "flag", 0, 1, 0, 1],
+        [70, "ok", "flag", 0, 33, 0, 1],
+    ]
+    assert _assert_same(data) == 2
+    (cube,) = _tallies(wide, True, 10)
+    assert cube[columns].values.tolist() == [[6, "ok", "flag", 0, 1, 0, 1]]  # split type 1:1
 
 
 def _truncated_prism(k: int, t: int) -> list[list[int]]:
@@ -221,15 +215,15 @@ def test_batches_keep_their_bytes_while_buffers_are_reused(plantri_output, monke
     import grainclass.readers.planar_code as reader
 
     data = plantri_output(10).read_bytes()  # 233 triangulations of 59 bytes
-    whole = grain_codes(next(read_planar_code(io.BytesIO(data), "x", 10**6, raw=True)))
-    assert len(whole.class_code) == 233
+    (whole,) = _tallies(data, True, 10**6)
+    assert whole["count"].sum() == 233
     monkeypatch.setattr(reader, "BLOCK_BYTES", 256)
     held = list(read_planar_code(io.BytesIO(data), "x", 3, raw=True))
     assert len(held) > 50
     assert b"".join(b.buf.tobytes() for b in held) == data[len(b">>planar_code<<") :]
     batches = read_planar_code(io.BytesIO(data), "x", 3, raw=True)
-    streamed = [grain_codes(b).class_code for b in batches]
-    np.testing.assert_array_equal(np.concatenate(streamed), whole.class_code)
+    streamed = merge_tallies([tally_batch(b).counts for b in batches])
+    pd.testing.assert_frame_equal(streamed, merge_tallies([whole]))
 
 
 def test_a_pipe_written_in_small_pieces_reads_as_the_whole_stream(plantri_output, monkeypatch):

@@ -21,7 +21,6 @@ from grainclass.arrow import (
 )
 from grainclass.batch import GrainBatch
 from grainclass.parallel import run_ranges
-from grainclass.readers.planar_code import PlanarCodeRecords
 
 _MESSAGES = {
     codes.E_TOO_FEW_FACES: "{a} faces; a grain needs at least 4",
@@ -178,58 +177,9 @@ def _classify_csr(batch: GrainBatch, max_small: int, strings: bool) -> _Classifi
     return out
 
 
-def records_as_csr(batch: PlanarCodeRecords, pending: np.ndarray) -> GrainBatch:
-    """The records ``pending`` (those the fast path left) as a CSR batch, which the general
-    path reads."""
-    import io
-
-    from grainclass.readers.planar_code import read_planar_code
-
-    header = b">>planar_code be<<" if batch.big_endian else b">>planar_code<<"
-    records = [batch.buf[batch.starts[r] : batch.starts[r + 1]].tobytes() for r in pending]
-    data = io.BytesIO(header + b"".join(records))
-    return next(iter(read_planar_code(data, batch.source, len(pending))))
-
-
-def grain_codes(batch: GrainBatch | PlanarCodeRecords) -> GrainCodes:
-    """Classify a batch for counting only: no truncation-forest strings, no types.
-
-    planar_code records are classified straight from their bytes (the census counts them
-    without codes per grain: ``summary.tally_batch``).
-    """
-    from grainclass._kernels.batch import _classify_records
-
-    if not isinstance(batch, PlanarCodeRecords):
-        return _csr_grain_codes(batch, _classify_csr(batch, MAX_BITSET_FACES, strings=False))
-    g = len(batch)
-    n_faces = np.zeros(g, np.int64)
-    triangles = np.zeros(g, np.int32)
-    status = np.zeros(g, np.int8)
-    family = np.full(g, -1, np.int8)
-    fundamental = np.zeros(g, np.int32)
-    n_trees = np.zeros(g, np.int32)
-    belts = np.zeros((g, 3), np.int64)
-    run_ranges(
-        _classify_records,
-        g,
-        batch.buf,
-        batch.starts,
-        batch.big_endian,
-        n_faces,
-        triangles,
-        status,
-        family,
-        fundamental,
-        n_trees,
-        belts,
-    )
-    codes_ = _grain_codes(n_faces, status, family, fundamental, n_trees, belts[:, 0], triangles)
-    pending = np.flatnonzero(status == codes.PENDING)
-    if len(pending):
-        general = grain_codes(records_as_csr(batch, pending))
-        for name in GrainCodes.__dataclass_fields__:
-            getattr(codes_, name)[pending] = getattr(general, name)
-    return codes_
+def grain_codes(batch: GrainBatch) -> GrainCodes:
+    """Classify a batch for counting only: no truncation-forest strings, no types."""
+    return _csr_grain_codes(batch, _classify_csr(batch, MAX_BITSET_FACES, strings=False))
 
 
 def grain_codes_and_type_hashes(batch: GrainBatch) -> tuple[GrainCodes, np.ndarray]:

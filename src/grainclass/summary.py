@@ -205,21 +205,16 @@ def _tally_records(batch: PlanarCodeRecords) -> Tally:
     from grainclass._kernels.batch import _tally_records as tally_kernel
     from grainclass._kernels.batch import census_fields
     from grainclass._kernels.groups import EMPTY
-    from grainclass.classification import records_as_csr
 
     table, sums, pending = tally_kernel(batch.buf, batch.starts, batch.big_endian)
     used = table != EMPTY
     family, class_code, n_faces, round_k, split_k = census_fields(table[used])
-    parts = []
-    if len(family):
-        status = np.full(len(family), kernel_codes.OK)
-        grains, triangles = sums[used, 0], sums[used, 1]
-        parts.append(
-            _counts(status, family, class_code, n_faces, round_k, split_k, triangles, grains)
-        )
+    status = np.full(len(family), kernel_codes.OK)
+    grains, triangles = sums[used, 0], sums[used, 1]
+    counts = _counts(status, family, class_code, n_faces, round_k, split_k, triangles, grains)
     if len(pending):
-        parts.append(tally_batch(records_as_csr(batch, pending)).counts)
-    counts = parts[0] if len(parts) == 1 else pd.concat(parts, ignore_index=True)
+        rest = tally_batch(batch.as_csr(pending)).counts
+        counts = pd.concat([counts, rest], ignore_index=True) if len(counts) else rest
     return Tally(counts, len(batch))
 
 

@@ -5,9 +5,8 @@ scratch (``small.py``); the fast kernels mark every other grain PENDING, for
 :func:`_classify_general_batch`, which allocates per grain but diagnoses anything
 (``validate.py``, ``reduce.py``, ``belts.py``). It is a kernel of its own so that it is compiled
 only when some input needs it (it is most of the compilation). Two layouts come in: CSR arrays
-(:func:`_classify_batch`, any reader) and plantri's planar_code bytes, validated in place:
-:func:`_classify_records` writes codes per grain, :func:`_tally_records` (the census) only
-counts the grains by group.
+(:func:`_classify_batch`, any reader) and plantri's planar_code bytes, validated in place and
+counted by group without a row per grain (:func:`_tally_records`, the census).
 """
 
 import numpy as np
@@ -238,44 +237,6 @@ def _count_small(g, n, work, adj, link, family, fundamental, belts):
     alive = _classify_small(g, n, work, family, fundamental, belts)
     trees = _roots_small(alive, n, link) if 4 < fundamental[g] < n else 0
     return triangles, trees
-
-
-@njit
-def _classify_records(
-    first,
-    last,
-    buf,
-    starts,
-    big_endian,
-    n_faces,
-    triangles,
-    status,
-    family,
-    fundamental,
-    trees_count,
-    belts,
-):
-    """The fast path without strings, straight from planar_code records: record r is
-    ``buf[starts[r]:starts[r + 1]]`` (complete, as ``planar_code._scan`` found it).
-    ``n_faces[r]`` gets its vertex count, ``triangles[r]`` its vertices of degree 3 (the
-    grain's triangular faces) when it is ok. Any record that :func:`_small_record` does not
-    validate is left PENDING, for the general path on CSR arrays.
-    """
-    work = _work()
-    adj, following, link, _, _ = work
-    stamp = 0
-    for r in range(first, last):
-        stamp = next_stamp(following, stamp)
-        n, fast = _small_record(buf, starts, r, big_endian, adj, following, stamp)
-        n_faces[r] = n
-        family[r] = -1
-        if fast:
-            status[r] = OK
-            triangles[r], trees_count[r] = _count_small(
-                r, n, work, adj, link, family, fundamental, belts
-            )
-        else:
-            status[r] = PENDING
 
 
 @njit(inline="always")

@@ -38,6 +38,14 @@ class PlanarCodeRecords:
     def __len__(self) -> int:
         return len(self.starts) - 1
 
+    def as_csr(self, records: np.ndarray) -> GrainBatch:
+        """The records numbered ``records`` parsed into a CSR batch (for the general path)."""
+        import io
+
+        header = b">>planar_code be<<" if self.big_endian else b">>planar_code<<"
+        data = b"".join(self.buf[self.starts[r] : self.starts[r + 1]].tobytes() for r in records)
+        return next(iter(read_planar_code(io.BytesIO(header + data), self.source, len(records))))
+
 
 def _read_header(stream: BinaryIO, head: bytes) -> tuple[bool, bytes]:
     """Strip an optional header; returns (big_endian, the bytes read past it)."""
