@@ -206,7 +206,8 @@ def _tally_records(batch: PlanarCodeRecords) -> Tally:
     from grainclass._kernels.batch import census_fields
     from grainclass._kernels.groups import EMPTY
 
-    table, sums, pending = tally_kernel(batch.buf, batch.starts, batch.big_endian)
+    with np.errstate(over="ignore"):  # the hash wraps modulo 2**64 (seen without the JIT)
+        table, sums, pending = tally_kernel(batch.buf, batch.starts, batch.big_endian)
     used = table != EMPTY
     family, class_code, n_faces, round_k, split_k = census_fields(table[used])
     status = np.full(len(family), kernel_codes.OK)
