@@ -14,7 +14,7 @@ import numpy as np
 from grainclass._kernels.belts import _four_belts
 from grainclass._kernels.bits import MAX_BITSET_FACES, ONE, ZERO, lowest, popcount
 from grainclass._kernels.codes import CLASS_OF, E_PARSE, FLAG, INVALID, OK, PENDING, SC, STACKED
-from grainclass._kernels.groups import EMPTY, FIRST_SLOTS, doubled, slot
+from grainclass._kernels.groups import EMPTY, FIRST_SLOTS, insert
 from grainclass._kernels.planar_code import _entry
 from grainclass._kernels.reduce import _has_empty_triangle, _reduce
 from grainclass._kernels.small import (
@@ -293,13 +293,7 @@ def _tally_records(buf, starts, big_endian):
             continue
         triangles, trees = _count_small(0, n, work, adj, link, family, fundamental, belts)
         key = census_key(n, family[0], n - fundamental[0], trees, belts[0, 0])
-        s = slot(table, key)
-        if table[s] == EMPTY:
-            table[s] = key
-            groups += 1
-            if 2 * groups > table.size:
-                table, sums = doubled(table, sums)
-                s = slot(table, key)
+        table, sums, groups, s = insert(table, sums, groups, key)
         sums[s, 0] += 1
         sums[s, 1] += triangles
     return table, sums, pending[:n_pending]

@@ -38,6 +38,20 @@ def doubled(table, values):
     return bigger, moved
 
 
+@njit(inline="always")
+def insert(table, values, groups, key):
+    """``(table, values, groups, s)``: ``key``'s slot s, taken if the key is new (``groups``,
+    the number of keys, then grows by one, and the table doubles once it is half full)."""
+    s = slot(table, key)
+    if table[s] == EMPTY:
+        table[s] = key
+        groups += 1
+        if 2 * groups > table.size:
+            table, values = doubled(table, values)
+            s = slot(table, key)
+    return table, values, groups, s
+
+
 @njit
 def _group_keys(keys):
     """``(first, group)`` for int64 ``keys``: the first row of each distinct key, in order of
@@ -49,15 +63,10 @@ def _group_keys(keys):
     group = np.empty(n, np.int64)
     groups = 0
     for i in range(n):
-        key = keys[i]
-        s = slot(table, key)
-        if table[s] == EMPTY:
-            table[s] = key
-            index[s, 0] = groups
-            first[groups] = i
-            groups += 1
-            if 2 * groups > table.size:
-                table, index = doubled(table, index)
-                s = slot(table, key)
+        known = groups
+        table, index, groups, s = insert(table, index, groups, keys[i])
+        if groups > known:
+            index[s, 0] = known
+            first[known] = i
         group[i] = index[s, 0]
     return first[:groups].copy(), group
