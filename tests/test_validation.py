@@ -276,7 +276,8 @@ def _fast_check(lists, following, stamp) -> bool:
 
     csr = GrainBatch.from_lists([lists])
     adj = np.empty(64, np.uint64)
-    return _validate_small(len(lists), csr.nbr_offsets, csr.neighbors, 0, adj, following, stamp)
+    ok, _ = _validate_small(len(lists), csr.nbr_offsets, csr.neighbors, 0, adj, following, stamp)
+    return ok
 
 
 def _statuses(grains: list[list[list[int]]]) -> tuple[list[str], list[str]]:

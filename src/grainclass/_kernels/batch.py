@@ -90,13 +90,14 @@ def _roots_small(alive, n, link):
 
 
 @njit(inline="always")
-def _classify_small(g, n, work, family, fundamental, belts):
-    """Classify grain g, validated by the fast path (its bitsets are in ``work``); returns the
-    fundamental faces as a bitset. The truncation trees are left to the caller: the census
-    only counts them, and a kernel that never writes their strings is compiled without them.
+def _classify_small(g, n, triangular, work, family, fundamental, belts):
+    """Classify grain g, validated by the fast path (its bitsets are in ``work``, its
+    triangular faces in the bitset ``triangular``); returns the fundamental faces as a bitset.
+    The truncation trees are left to the caller: the census only counts them, and a kernel
+    that never writes their strings is compiled without them.
     """
     adj, _, link, removed_round, _ = work
-    alive = _reduce_small(n, adj, removed_round, link)
+    alive = _reduce_small(n, adj, triangular, removed_round, link)
     fundamental[g] = popcount(alive)
     if fundamental[g] == 4:
         family[g] = STACKED
@@ -156,12 +157,15 @@ def _classify_batch(
         f0 = face_offsets[g]
         n = face_offsets[g + 1] - f0
         stamp = next_stamp(following, stamp)
-        if n <= max_small and _validate_small(
-            n, nbr_offsets, neighbors, f0, work[0], following, stamp
-        ):
+        fast, triangular = (
+            _validate_small(n, nbr_offsets, neighbors, f0, work[0], following, stamp)
+            if n <= max_small
+            else (False, ZERO)
+        )
+        if fast:
             status[g] = OK
             consistent[g] = True
-            alive = _classify_small(g, n, work, family, fundamental, belts)
+            alive = _classify_small(g, n, triangular, work, family, fundamental, belts)
             if 4 < fundamental[g] < n:
                 if strings:
                     trees_count[g], depth[g], tree_length[g] = _forest_string_small(
@@ -213,30 +217,28 @@ def _classify_general_batch(
 
 @njit(inline="always")
 def _small_record(buf, starts, r, big_endian, adj, following, stamp):
-    """``(n, fast)`` for record r of ``buf``: its vertex count, and whether it is a
+    """``(n, fast, triangular)`` for record r of ``buf``: its vertex count, whether it is a
     triangulation in 1-byte entries with at most 64 vertices that the fast path validates in
-    place (:func:`small._validate_record`; the bitsets are then in ``adj``)."""
+    place (:func:`small._validate_record`; the bitsets are then in ``adj``), and if so its
+    degree-3 vertices (the grain's triangular faces) as a bitset."""
     p = starts[r]
     wide = buf[p] == 0
     q = p + 1 if wide else p
     n = _entry(buf, q, wide, big_endian)
     # 1 + n + (6n - 12) bytes: a triangulation's worth of entries.
     if wide or n > MAX_BITSET_FACES or starts[r + 1] - p != 7 * n - 11:
-        return n, False
-    return n, _validate_record(buf, q + 1, n, adj, following, stamp)
+        return n, False, ZERO
+    fast, triangular = _validate_record(buf, q + 1, n, adj, following, stamp)
+    return n, fast, triangular
 
 
 @njit(inline="always")
-def _count_small(g, n, work, adj, link, family, fundamental, belts):
+def _count_small(g, n, triangular, work, link, family, fundamental, belts):
     """:func:`_classify_small` of a validated grain g, as the census needs it: returns its
-    triangular faces (vertices of degree 3) and its number of truncation trees (``adj`` and
-    ``link`` are work[0] and work[2]: the tuple's items unpacked in here cost time)."""
-    triangles = 0
-    for v in range(n):
-        triangles += popcount(adj[v]) == 3
-    alive = _classify_small(g, n, work, family, fundamental, belts)
-    trees = _roots_small(alive, n, link) if 4 < fundamental[g] < n else 0
-    return triangles, trees
+    number of truncation trees (``link`` is work[2]: the tuple's items unpacked in here cost
+    time)."""
+    alive = _classify_small(g, n, triangular, work, family, fundamental, belts)
+    return _roots_small(alive, n, link) if 4 < fundamental[g] < n else 0
 
 
 @njit(inline="always")
@@ -286,14 +288,14 @@ def _tally_records(buf, starts, big_endian):
     n_pending = 0
     for r in range(len(starts) - 1):
         stamp = next_stamp(following, stamp)
-        n, fast = _small_record(buf, starts, r, big_endian, adj, following, stamp)
+        n, fast, triangular = _small_record(buf, starts, r, big_endian, adj, following, stamp)
         if not fast:
             pending[n_pending] = r
             n_pending += 1
             continue
-        triangles, trees = _count_small(0, n, work, adj, link, family, fundamental, belts)
+        trees = _count_small(0, n, triangular, work, link, family, fundamental, belts)
         key = census_key(n, family[0], n - fundamental[0], trees, belts[0, 0])
         table, sums, groups, s = insert(table, sums, groups, key)
         sums[s, 0] += 1
-        sums[s, 1] += triangles
+        sums[s, 1] += popcount(triangular)
     return table, sums, pending[:n_pending]
