@@ -83,21 +83,16 @@ def _near_triangulation_records(draw) -> bytes:
     st.lists(_near_triangulation_records(), min_size=1, max_size=12),
     st.integers(0, 5),
     st.integers(0, 15),
-    st.booleans(),
 )
-def test_records_are_cut_where_their_nth_zero_is(records, cut, offset, with_words):
-    """With the bytes also as words (zeros counted eight at a time, from any byte of a word
-    on; the bytes before them 0 or not) and without."""
+def test_records_are_cut_where_their_nth_zero_is(records, cut, offset):
+    """From any offset into a buffer (the bytes before it 0 or not), whatever its alignment."""
     from grainclass._kernels.planar_code import _scan
 
     data = b"".join(records)[: -cut or None]
     whole = np.full(offset + len(data), offset % 2, np.uint8)
     whole[offset:] = np.frombuffer(data, np.uint8)
-    words = np.empty(0, np.uint64)
-    if with_words and sys.byteorder == "little":  # words are little-endian, as _words makes them
-        words = whole[: len(whole) // 8 * 8].view(np.uint64)
     starts = np.empty(len(records) + 1, np.int64)
-    found, _, _, consumed = _scan(whole[offset:], words, offset, False, len(records), starts)
+    found, _, _, consumed = _scan(whole[offset:], False, len(records), starts)
     ends = _record_ends(data)
     assert starts[1 : found + 1].tolist() == ends
     assert consumed == (ends[-1] if ends else 0)

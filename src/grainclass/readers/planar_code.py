@@ -96,9 +96,7 @@ def read_planar_code(
         buf = buffer[pos:]
         buf.flags.writeable = False  # the batches share it; one numba signature for all callers
         starts = np.empty(chunk_size + 1, np.int64)
-        records, vertices, entries, consumed = _scan(
-            buf, _words(buffer), pos, big_endian, chunk_size, starts
-        )
+        records, vertices, entries, consumed = _scan(buf, big_endian, chunk_size, starts)
         if records == 0:
             if at_end:
                 if len(buf):
@@ -128,16 +126,6 @@ def read_planar_code(
         record += records
         pos += consumed
         last_chunk = consumed
-
-
-def _words(buffer: np.ndarray) -> np.ndarray:
-    """``buffer``'s bytes as little-endian uint64 words, for the scan to count zeros eight at a
-    time; none if they cannot be read so (a big-endian machine, a buffer off an 8-byte
-    boundary: the first bytes read, as a ``bytes`` object)."""
-    aligned = sys.byteorder == "little" and buffer.ctypes.data % 8 == 0
-    words = buffer[: len(buffer) // 8 * 8].view(np.uint64) if aligned else np.empty(0, np.uint64)
-    words.flags.writeable = False  # as the bytes are: one numba signature
-    return words
 
 
 class _BufferPool:
