@@ -79,7 +79,8 @@ def _validate_small(n, nbr_offsets, neighbors, f0, adj, following, stamp):
     """``(ok, triangular)``: ok if grain (faces from ``f0``) is certainly a simple grain with
     consistent cyclic lists, and then the bitset of its triangular faces (its dual's degree-3
     vertices, which reduction starts from: known here from the lists' lengths, they cost no
-    pass over the bitsets; validation and reduction at n = 16: 296-310 -> 278-288 ns).
+    pass over the bitsets; validation and reduction of a planar_code record at n = 16: 296-310
+    -> 278-288 ns).
 
     Fills ``adj`` (uint64[>=n]) and the corner table ``following`` (see :func:`next_stamp`).
     One pass over the darts checks 6n - 12 of them, indices in range, no repeats, and counts
