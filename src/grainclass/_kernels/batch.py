@@ -233,15 +233,6 @@ def _small_record(buf, starts, r, big_endian, adj, following, stamp):
 
 
 @njit(inline="always")
-def _count_small(g, n, triangular, work, link, family, fundamental, belts):
-    """:func:`_classify_small` of a validated grain g, as the census needs it: returns its
-    number of truncation trees (``link`` is work[2]: the tuple's items unpacked in here cost
-    time)."""
-    alive = _classify_small(g, n, triangular, work, family, fundamental, belts)
-    return _roots_small(alive, n, link) if 4 < fundamental[g] < n else 0
-
-
-@njit(inline="always")
 def census_key(n, family, truncations, trees, split):
     """The group an ok grain of at most 64 faces is counted in: family, class, faces, round
     (truncations, -1 for sc) and split (-1 unless fundamental flag), each shifted to be >= 0,
@@ -293,7 +284,8 @@ def _tally_records(buf, starts, big_endian):
             pending[n_pending] = r
             n_pending += 1
             continue
-        trees = _count_small(0, n, triangular, work, link, family, fundamental, belts)
+        alive = _classify_small(0, n, triangular, work, family, fundamental, belts)
+        trees = _roots_small(alive, n, link) if 4 < fundamental[0] < n else 0
         key = census_key(n, family[0], n - fundamental[0], trees, belts[0, 0])
         table, sums, groups, s = insert(table, sums, groups, key)
         sums[s, 0] += 1
