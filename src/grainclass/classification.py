@@ -83,8 +83,11 @@ class GrainCodes:
     """What the summaries count, per grain, as integer arrays (no strings, no Arrow).
 
     ``status`` and ``family`` are codes of :mod:`grainclass._kernels.codes`, ``class_code`` an
-    index into :data:`grainclass.schema.CLASSES` (-1 when not ok), ``split_k`` is -1 unless
-    the grain is fundamental flag, ``n_faces`` -1 for an unreadable record.
+    index into :data:`grainclass.schema.CLASSES`; ``truncations`` and ``class_code`` are -1 when
+    the grain is not ok, ``round_k`` also for sc, ``split_k`` unless the grain is fundamental
+    flag; ``n_faces`` is -1 for an unreadable record. The per-grain table's columns take their
+    nulls from these -1s, so that the rules of round<=k and of the split type are written once
+    for rows and summaries (the census kernel's ``census_key`` is their compiled twin).
     """
 
     n_faces: np.ndarray
@@ -92,6 +95,7 @@ class GrainCodes:
     family: np.ndarray
     truncations: np.ndarray
     class_code: np.ndarray
+    round_k: np.ndarray
     split_k: np.ndarray
     triangles: np.ndarray
 
@@ -217,6 +221,7 @@ def _grain_codes(n_faces, status, family, fundamental, n_trees, split, triangles
         family=family,
         truncations=truncations,
         class_code=_class_codes(family, truncations, n_trees),
+        round_k=np.where(family != codes.SC, truncations, -1),
         split_k=np.where(is_flag, split, -1),
         triangles=triangles,
     )
@@ -326,13 +331,14 @@ def _table(batch: GrainBatch, out: _Classified, types: _Types) -> pa.Table:
     parsed, status, err, family = out.parsed, out.status, out.err, out.family
     fundamental, n_trees, depth, belts = out.fundamental, out.n_trees, out.depth, out.belts
     ok = status == codes.OK
-    truncations = n_faces - fundamental
-    stacked = family == codes.STACKED
-    has_trees = ok & ~stacked
-    is_flag = (family == codes.FLAG) & (truncations == 0)
+    has_trees = ok & (family != codes.STACKED)
     p_offsets, p_counts, triangles = _p_vectors(batch.face_offsets, batch.nbr_offsets, ok)
     trees = string_array(*_compact(out.tree_offsets, out.tree_bytes, out.tree_length), has_trees)
-    split_k = belts[:, 0]
+    grain = _grain_codes(
+        np.where(parsed, n_faces, -1), status, family, fundamental, n_trees, belts[:, 0], triangles
+    )
+    split_k = grain.split_k
+    is_flag = split_k >= 0
     with_type = types.computed
     volume, area = batch.volume, batch.area
     isoperimetric = None
@@ -367,14 +373,12 @@ def _table(batch: GrainBatch, out: _Classified, types: _Types) -> pa.Table:
             mask=None if ok.all() else booleans(~ok),
         ),
         schema.FAMILY: strings_from_codes(family, codes.FAMILY_NAMES),
-        schema.CLASS: strings_from_codes(
-            _class_codes(family, truncations, n_trees), schema.CLASSES
-        ),
-        schema.TRUNCATIONS: numbers(truncations, pa.int32(), ok),
+        schema.CLASS: strings_from_codes(grain.class_code, schema.CLASSES),
+        schema.TRUNCATIONS: numbers(grain.truncations, pa.int32(), ok),
         schema.FUNDAMENTAL_FACES: numbers(fundamental, pa.int32(), ok),
         schema.TREES: trees,
         schema.DEPTH: numbers(depth, pa.int32(), has_trees),
-        schema.ROUND_K: numbers(truncations, pa.int32(), ok & (family != codes.SC)),
+        schema.ROUND_K: numbers(grain.round_k, pa.int32(), grain.round_k >= 0),
         schema.SPLIT_K: numbers(split_k, pa.int32(), is_flag),
         schema.SPLIT_M: numbers(n_faces - 4 - split_k, pa.int32(), is_flag),
         schema.BELTS4: numbers(belts[:, 1], pa.int32(), is_flag),

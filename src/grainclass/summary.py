@@ -163,8 +163,14 @@ def tally_batch(
     hashes = np.zeros(0, np.uint64)
     if code_hashes is not None:  # the distinct types of the kept ok grains
         hashes = np.unique(code_hashes[ok if keep is None else ok & keep])
-    round_k = np.where(ok & (codes.family != kernel_codes.SC), codes.truncations, -1)
-    keys = [codes.status, codes.family, codes.class_code, codes.n_faces, round_k, codes.split_k]
+    keys = [
+        codes.status,
+        codes.family,
+        codes.class_code,
+        codes.n_faces,
+        codes.round_k,
+        codes.split_k,
+    ]
     triangles = codes.triangles
     q = None
     if volume is not None and area is not None:
