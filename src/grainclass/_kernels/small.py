@@ -74,6 +74,38 @@ def _connected(adj, reached, n):
     return reached == everything or _component(adj, reached, everything) == everything
 
 
+@njit(inline="always")
+def _next_face(v, x, y, stamp, following, indices, row, closed):
+    """Face y read after face x in face v's list, by either validation: its index into
+    ``indices``, masked (see :func:`_validate_small`), its bit into ``row``, and the corner
+    (v, x, y). Returns the running (y, indices, row, closed)."""
+    indices |= y
+    y &= 63
+    return y, indices, row | bit(y), closed + _corner(v, x, y, stamp, following)
+
+
+@njit(inline="always")
+def _close_list(
+    v, x, first, row, count, stamp, following, adj, closed, bad, triangular, listed, reached
+):
+    """The end of face v's list of ``count`` faces, ``row`` their bitset, read by either
+    validation: its last corner (v, x, first), its checks (a repeat, fewer than three faces, v
+    itself), and v's bits. Returns the running (closed, bad, triangular, listed, reached)."""
+    closed += _corner(v, x, first, stamp, following)
+    bad |= (popcount(row) != count) | (count < 3) | ((row >> np.uint64(v)) & ONE != ZERO)
+    triangular |= bit(v) if count == 3 else ZERO
+    adj[at(v)] = row
+    return closed, bad, triangular, listed | row, _reach(reached, v, row)
+
+
+@njit(inline="always")
+def _verdict(n, adj, indices, bad, listed, closed, reached, triangular):
+    """``(ok, triangular)`` once every list is read (see :func:`_validate_small`)."""
+    if indices < 0 or indices > 63 or bad or listed & ~full(n) or closed != 2 * n - 4:
+        return False, ZERO
+    return _connected(adj, reached, n), triangular
+
+
 @njit
 def _validate_small(n, nbr_offsets, neighbors, f0, adj, following, stamp):
     """``(ok, triangular)``: ok if grain (faces from ``f0``) is certainly a simple grain with
@@ -117,22 +149,14 @@ def _validate_small(n, nbr_offsets, neighbors, f0, adj, following, stamp):
         row = bit(x)
         i += 1
         while i < end:
-            y = int(neighbors[at(i)])
-            indices |= y
-            y &= 63
-            row |= bit(y)
-            closed += _corner(v, x, y, stamp, following)
-            x = y
+            x, indices, row, closed = _next_face(
+                v, x, int(neighbors[at(i)]), stamp, following, indices, row, closed
+            )
             i += 1
-        closed += _corner(v, x, first, stamp, following)
-        bad |= (popcount(row) != count) | ((row >> np.uint64(v)) & ONE != ZERO)
-        triangular |= bit(v) if count == 3 else ZERO
-        listed |= row
-        adj[at(v)] = row
-        reached = _reach(reached, v, row)
-    if indices < 0 or indices > 63 or bad or listed & ~full(n) or closed != 2 * n - 4:
-        return False, ZERO
-    return _connected(adj, reached, n), triangular
+        closed, bad, triangular, listed, reached = _close_list(
+            v, x, first, row, count, stamp, following, adj, closed, bad, triangular, listed, reached
+        )
+    return _verdict(n, adj, indices, bad, listed, closed, reached, triangular)
 
 
 @njit
@@ -159,25 +183,17 @@ def _validate_record(buf, p, n, adj, following, stamp):
         p += 1
         b = int(buf[at(p)])
         while b != 0:
-            y = b - 1
-            indices |= y
-            y &= 63
-            row |= bit(y)
-            closed += _corner(v, x, y, stamp, following)
-            x = y
+            x, indices, row, closed = _next_face(
+                v, x, b - 1, stamp, following, indices, row, closed
+            )
             p += 1
             b = int(buf[at(p)])
         count = p - start
         p += 1
-        closed += _corner(v, x, first, stamp, following)
-        bad |= (popcount(row) != count) | (count < 3) | ((row >> np.uint64(v)) & ONE != ZERO)
-        triangular |= bit(v) if count == 3 else ZERO
-        listed |= row
-        adj[at(v)] = row
-        reached = _reach(reached, v, row)
-    if indices > 63 or bad or listed & ~full(n) or closed != 2 * n - 4:
-        return False, ZERO
-    return _connected(adj, reached, n), triangular
+        closed, bad, triangular, listed, reached = _close_list(
+            v, x, first, row, count, stamp, following, adj, closed, bad, triangular, listed, reached
+        )
+    return _verdict(n, adj, indices, bad, listed, closed, reached, triangular)
 
 
 @njit
