@@ -116,7 +116,22 @@ def test_malformed_file_is_one_bad_grain_among_good_ones(tmp_path):
     (tmp_path / "b.fe").write_text("vertices\n1 0 0 zero\n")
     rows = _rows(tmp_path)
     assert [(r["grain_id"], r["status"]) for r in rows] == [("a", "ok"), ("b", "invalid")]
-    assert rows[1]["error"] == f"{tmp_path / 'b.fe'}:2: cannot read this vertice line"
+    assert rows[1]["error"] == f"{tmp_path / 'b.fe'}:2: cannot read this vertex line"
+
+
+def test_file_without_bodies_keeps_its_row(tmp_path):
+    """An empty dump, or one cut off before its bodies, among good ones: a row each, invalid."""
+    good = (FIXTURE_DIR / "21000-00000029.fe").read_text()
+    shutil.copy(FIXTURE_DIR / "21000-00000029.fe", tmp_path / "a.fe")
+    (tmp_path / "b.fe").write_text(good[: good.lower().index("bodies")])
+    (tmp_path / "c.fe").write_text("")
+    rows = _rows(tmp_path)
+    assert [(r["grain_id"], r["status"]) for r in rows] == [
+        ("a", "ok"),
+        ("b", "invalid"),
+        ("c", "invalid"),
+    ]
+    assert rows[2]["error"].startswith(f"{tmp_path / 'c.fe'}:1: no bodies")
 
 
 def test_evolver_is_sniffed_without_the_extension(tmp_path):
@@ -138,3 +153,14 @@ def test_process_pool_reads_the_same_grains_in_the_same_order(fixture_rows, monk
     rows = _rows(FIXTURE_DIR)
     assert [r["grain_id"] for r in rows] == sorted(r[:-3] for r in FIXTURES)
     assert {r["grain_id"] + ".fe": r for r in rows} == fixture_rows
+
+
+@pytest.mark.parametrize("forced", [False, True])
+def test_standard_input_is_refused_with_a_reason(forced):
+    """Sniffed or named with --format, an Evolver datafile on standard input gets the same
+    message (it is read by file: a folder is a dataset)."""
+    text = (FIXTURE_DIR / "21000-00000029.fe").read_text()
+    options = ["--format", "evolver"] if forced else []
+    result = CliRunner().invoke(cli, ["classify", *options, "-", "-o", "-"], input=text)
+    assert result.exit_code == 1
+    assert "-: Surface Evolver input must be a file or a folder" in result.stderr

@@ -155,11 +155,15 @@ def read_dataset(
         raise ValueError(f"unknown format {format!r}; expected one of {', '.join(FORMATS)}")
     paths = _expand(paths)
     formats = [_sniff_path(path, format) for path in paths]
+    # Consecutive .fe files are read as one dataset (standard input cannot be one of them).
+    evolver_files = [
+        fmt == "evolver" and path != "-" for path, fmt in zip(paths, formats, strict=True)
+    ]
     k = 0
     while k < len(paths):
-        if formats[k] == "evolver":  # consecutive .fe files are read as one dataset
+        if evolver_files[k]:
             end = k
-            while end < len(paths) and formats[end] == "evolver":
+            while end < len(paths) and evolver_files[end]:
                 end += 1
             yield from read_evolver(paths[k:end], chunk_size, triple_edges)
             k = end

@@ -30,7 +30,14 @@ import numpy as np
 from grainclass.batch import GrainBatch, csr_from_lists, tri_state
 from grainclass.errors import InputError
 
-SECTIONS = {"vertices", "edges", "faces", "facets", "bodies"}
+# A datafile's sections, and what one numbered line of each is called in messages.
+SECTIONS = {
+    "vertices": "vertex",
+    "edges": "edge",
+    "faces": "facet",
+    "facets": "facet",
+    "bodies": "body",
+}
 WRAPS = {"*": 0, "+": 1, "-": -1}
 DEFAULT_TRIPLE_EDGES = ("color", "red")
 PARALLEL_FILES = 200  # from this many files on, a process pool reads them
@@ -133,7 +140,7 @@ def _parse_entry(
                 volume = float(tokens[lowered.index("volume") + 1])
             data.bodies[ident] = (number, _leading_integers(tokens[1:]), volume)
     except (ValueError, IndexError, KeyError):
-        raise InputError(source, f"cannot read this {section[:-1]} line", number) from None
+        raise InputError(source, f"cannot read this {SECTIONS[section]} line", number) from None
 
 
 def _leading_integers(tokens: list[str]) -> list[int]:
@@ -377,6 +384,12 @@ def read_evolver(
         yield _batch(grains)
 
 
+_NO_BODIES = (
+    "no bodies: the file is empty, ends before its bodies section, or is not a Surface Evolver "
+    "datafile"
+)
+
+
 def _read_file(path: str, triple_edges: tuple[str, str]) -> list[_Grain]:
     """The grains of one datafile (a malformed file is one bad grain, not a failed run)."""
     stem = path.rsplit("/", 1)[-1].removesuffix(".fe")
@@ -387,6 +400,8 @@ def _read_file(path: str, triple_edges: tuple[str, str]) -> list[_Grain]:
         raise InputError(path, exc.strerror or str(exc)) from None
     except InputError as exc:
         return [_Grain(stem, path, exc.line or 1, error=exc.message)]
+    if not data.bodies:  # an empty or cut-off dump still has its row, not silence
+        return [_Grain(stem, path, 1, error=_NO_BODIES)]
     facet_bodies: dict[int, list[int]] = defaultdict(list)
     for body, (_, signed, _) in data.bodies.items():
         for f in signed:
