@@ -101,3 +101,33 @@ def test_code_hashes_are_the_hashes_of_the_code_strings():
         hashes = _code_hashes(types.weinberg, types.code_offsets, types.computed)
     np.testing.assert_array_equal(hashes, expected)
     assert len(set(expected.tolist())) == 6
+
+
+def test_types_of_no_grains_is_an_empty_table_with_the_usual_columns(tmp_path):
+    empty = tmp_path / "empty.txt"
+    empty.write_text("")
+    result = CliRunner().invoke(cli, ["types", str(empty), "--format", "csv"])
+    assert result.exit_code == 0, result.output
+    header = "weinberg,n_faces,p_vector,class,split,penalty,symmetry,count,fraction"
+    assert result.stdout.splitlines() == [header]
+
+
+def test_types_refuses_a_table_classified_without_types(tmp_path):
+    plain = tmp_path / "plain.parquet"
+    runner = CliRunner()
+    result = runner.invoke(cli, ["classify", INPUTS[0], "-o", str(plain), "--no-types", "-q"])
+    assert result.exit_code == 0
+    result = runner.invoke(cli, ["types", str(plain)])
+    assert result.exit_code == 1
+    assert f"{plain}: 13 ok grain(s) without a Weinberg vector" in result.stderr
+
+
+def test_types_and_summarize_refuse_a_parquet_file_that_is_not_a_grain_table(tmp_path):
+    summary = tmp_path / "classes.parquet"
+    runner = CliRunner()
+    result = runner.invoke(cli, ["summarize", INPUTS[0], "--table", "classes", "-o", str(summary)])
+    assert result.exit_code == 0
+    for command in ("types", "summarize"):
+        result = runner.invoke(cli, [command, str(summary)])
+        assert result.exit_code == 1
+        assert f"{summary}: not a grainclass per-grain table: no column" in result.stderr

@@ -58,10 +58,11 @@ def cli() -> None:
     """
 
 
-def _input_options(*format_flags: str, types: bool = True):
+def _input_options(*format_flags: str, types: bool | None = True):
     """Options shared by every command that reads grains; the input format goes by
-    ``format_flags`` (``--format`` is summarize's output format), ``types`` is the default of
-    ``--types/--no-types``."""
+    ``format_flags`` (``--format`` is the output format of summarize and types), ``types`` is
+    the default of ``--types/--no-types`` (None: no such option, the command always needs
+    them)."""
     options = [
         click.option(
             *format_flags,
@@ -93,14 +94,17 @@ def _input_options(*format_flags: str, types: bool = True):
             help="Threads for the compiled kernels (default: all cores).",
         ),
         click.option("-q", "--quiet", is_flag=True, help="No progress or counts on stderr."),
-        click.option(
-            "--types/--no-types",
-            default=types,
-            show_default=True,
-            help="Compute the Weinberg vectors (weinberg, symmetry, chirality) of raw inputs; "
-            "they cost several times the rest of the classification.",
-        ),
     ]
+    if types is not None:
+        options.append(
+            click.option(
+                "--types/--no-types",
+                default=types,
+                show_default=True,
+                help="Compute the Weinberg vectors (weinberg, symmetry, chirality) of raw "
+                "inputs; they cost several times the rest of the classification.",
+            )
+        )
 
     def decorate(command):
         for option in reversed(options):
@@ -291,7 +295,7 @@ def summarize_cmd(
     metavar="FILE",
     help="Also write VoroTop's .distribution file: (code) total left achiral right.",
 )
-@_input_options("--input-format")
+@_input_options("--input-format", types=None)
 def types_cmd(
     grains: tuple[str, ...],
     top: int | None,
@@ -305,7 +309,6 @@ def types_cmd(
     chunk_size: int,
     jobs: int | None,
     quiet: bool,
-    types: bool,
 ) -> None:
     """Count grains by combinatorial type (Weinberg vector), most frequent first.
 
@@ -320,8 +323,6 @@ def types_cmd(
     fmt = output_format or EXTENSIONS.get(os.path.splitext(output)[1].lower(), "text")
     if fmt == "parquet" and output == "-" and sys.stdout.isatty():
         raise click.UsageError("refusing to write Parquet to a terminal; use -o FILE")
-    if not types:
-        raise click.UsageError("types needs the Weinberg vectors: drop --no-types")
     _set_jobs(jobs)
     in_fmt = None if input_format == "auto" else input_format
     try:

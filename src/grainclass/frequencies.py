@@ -25,6 +25,9 @@ COLUMNS = [
 FIRST = [schema.N_FACES, schema.P_VECTOR, schema.CLASS, schema.SPLIT_K, schema.SPLIT_M]
 FIRST += [schema.PENALTY, schema.SYMMETRY]
 CHIRAL_COUNTS = {"left": -1, "achiral": 0, "right": 1}
+# The columns of type_frequencies, in order.
+OUTPUT = [schema.WEINBERG, schema.N_FACES, schema.P_VECTOR, schema.CLASS, "split"]
+OUTPUT += [schema.PENALTY, schema.SYMMETRY, "count", *CHIRAL_COUNTS, "fraction"]
 
 
 def _count_types(grains: pa.Table, n_faces: int | None, class_name: str | None) -> pd.DataFrame:
@@ -64,14 +67,15 @@ def type_frequencies(
     Returns
     -------
     pandas.DataFrame
-        Columns ``weinberg, n_faces, p_vector, class, split, penalty, symmetry, count,
-        fraction`` and the chirality counts ``left, achiral, right``; ``split`` is ``k:m``
-        for flag grains. ``fraction`` is of all grains counted.
+        Columns ``weinberg, n_faces, p_vector, class, split, penalty, symmetry, count, left,
+        achiral, right, fraction`` (:data:`OUTPUT`; also for no input at all): ``split`` is
+        ``k:m`` for flag grains, ``left, achiral, right`` the counts by chirality, ``fraction``
+        of all grains counted.
     """
     tables = [grains] if isinstance(grains, pa.Table) else grains
     parts = [_count_types(table, n_faces, class_name) for table in tables]
     if not parts:
-        return pd.DataFrame(columns=[schema.WEINBERG, *FIRST, "count", "fraction"])
+        return pd.DataFrame(columns=OUTPUT)
     both = pd.concat(parts)
     grouped = both.groupby(level=0, sort=False)
     table = grouped[FIRST].first()
@@ -84,7 +88,7 @@ def type_frequencies(
     table[[schema.PENALTY, schema.SYMMETRY]] = table[[schema.PENALTY, schema.SYMMETRY]].astype(
         "Int64"
     )
-    table = table.reset_index().sort_values(
+    table = table.reset_index()[OUTPUT].sort_values(
         ["count", schema.WEINBERG], ascending=[False, True], kind="stable"
     )
     return table.head(top).reset_index(drop=True) if top else table.reset_index(drop=True)

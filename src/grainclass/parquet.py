@@ -95,7 +95,11 @@ def iter_grain_tables(path: str, columns: list[str]) -> Iterator[pa.Table]:
     try:
         source = pa.BufferReader(stdin().read()) if path == "-" else path
         parquet = pq.ParquetFile(source)
-        for group in range(parquet.num_row_groups):
-            yield parquet.read_row_group(group, columns=columns)
-    except (OSError, pa.ArrowInvalid, KeyError) as exc:
+    except (OSError, pa.ArrowInvalid) as exc:
         raise InputError(path, f"not a grainclass Parquet table ({exc})") from None
+    # Asked for a column it lacks, Arrow leaves it out instead of failing.
+    missing = [name for name in columns if name not in parquet.schema_arrow.names]
+    if missing:
+        raise InputError(path, f"not a grainclass per-grain table: no column {', '.join(missing)}")
+    for group in range(parquet.num_row_groups):
+        yield parquet.read_row_group(group, columns=columns)

@@ -100,17 +100,38 @@ def grain_tables(
     format: str | None = None,
     chunk_size: int = DEFAULT_CHUNK_SIZE,
     triple_edges: tuple[str, str] = DEFAULT_TRIPLE_EDGES,
-    types: bool = True,
 ) -> Iterator[pa.Table]:
-    """Per-grain tables from classified Parquet files or, for any other input, classified now."""
+    """Per-grain tables with the Weinberg vectors (``columns`` include status and weinberg):
+    from classified Parquet files, which must hold them, or, for any other input, classified
+    now."""
     from grainclass.parquet import iter_grain_tables
 
     for path in paths:
         if is_parquet(path):
-            yield from iter_grain_tables(path, columns)
+            for table in iter_grain_tables(path, columns):
+                _require_types(path, table)
+                yield table
         else:
-            for table in classified_tables([path], format, chunk_size, triple_edges, types):
+            for table in classified_tables([path], format, chunk_size, triple_edges):
                 yield table.select(columns)
+
+
+def _require_types(path: str, table: pa.Table) -> None:
+    """Refuse a table whose ok grains lack their Weinberg vectors (classified with
+    ``--no-types``): counted, they would all vanish from the types."""
+    import pyarrow.compute as pc
+
+    from grainclass import schema
+    from grainclass.errors import InputError
+
+    ok = pc.equal(table.column(schema.STATUS), "ok")
+    untyped = pc.sum(pc.and_(ok, pc.is_null(table.column(schema.WEINBERG)))).as_py()
+    if untyped:
+        raise InputError(
+            path,
+            f"{untyped} ok grain(s) without a Weinberg vector (classified with --no-types): "
+            "classify the input again without --no-types",
+        )
 
 
 def tallies(
