@@ -104,6 +104,16 @@ def test_interrupted_writer_leaves_no_file(tmp_path):
     assert list(tmp_path.iterdir()) == []
 
 
+def test_output_that_names_a_folder_is_a_clear_failure_and_leaves_nothing(runner, tmp_path):
+    folder = tmp_path / "out"
+    folder.mkdir()
+    result = runner.invoke(cli, ["classify", str(EXAMPLES / "polytopes.txt"), "-o", str(folder)])
+    assert result.exit_code == 1
+    assert f"{folder}: cannot write here (Is a directory)" in result.stderr
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["out"]
+    assert list(folder.iterdir()) == []
+
+
 def test_ctrl_c_exits_130(monkeypatch, tmp_path, capsys):
     def interrupted(batch, types=True):
         raise KeyboardInterrupt

@@ -34,11 +34,15 @@ def atomic_output(path: str, binary_stdout_ok: bool = True) -> Iterator[BinaryIO
     try:
         with os.fdopen(fd, "wb") as sink:
             yield sink
-    except BaseException:
+        # mkstemp makes the file private; give it the permissions open() would.
+        umask = os.umask(0)
+        os.umask(umask)
+        os.chmod(tmp, 0o666 & ~umask)
+        os.replace(tmp, path)
+    except BaseException as exc:
         os.unlink(tmp)
+        # The readers report their own system errors as InputError: one here is the output's
+        # (a full disk, or a path that names a folder).
+        if isinstance(exc, OSError):
+            raise OutputError(f"{path}: cannot write here ({exc.strerror or exc})") from None
         raise
-    # mkstemp makes the file private; give it the permissions open() would.
-    umask = os.umask(0)
-    os.umask(umask)
-    os.chmod(tmp, 0o666 & ~umask)
-    os.replace(tmp, path)

@@ -529,18 +529,18 @@ def _as_bytes(rendered: str | bytes) -> bytes:
 
 
 def _write(output: str, data: bytes) -> None:
-    """Write to a file or, for ``-``, standard output; a closed pipe ends quietly."""
+    """Write to a file, whole or not at all, or, for ``-``, standard output; a closed pipe
+    ends quietly."""
+    from grainclass.atomic import atomic_output
+    from grainclass.errors import OutputError
+
     try:
-        if output == "-":
-            sys.stdout.buffer.write(data)
-            sys.stdout.buffer.flush()
-        else:
-            with open(output, "wb") as sink:
-                sink.write(data)
+        with atomic_output(output) as sink:
+            sink.write(data)
     except BrokenPipeError:
         _quiet_broken_pipe()
-    except OSError as exc:
-        raise click.ClickException(f"{output}: {exc.strerror}") from None
+    except OutputError as exc:
+        raise click.ClickException(str(exc)) from None
 
 
 def _quiet_broken_pipe() -> None:
