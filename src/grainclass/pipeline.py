@@ -38,20 +38,24 @@ def prefetch(items: Iterable[T], depth: int = 2) -> Iterator[T]:
     slots: queue.Queue = queue.Queue(maxsize=depth)
     stop = threading.Event()
 
+    def put(item: object) -> bool:
+        """Queue ``item`` unless the consumer has stopped (then it would wait forever)."""
+        while not stop.is_set():
+            try:
+                slots.put(item, timeout=0.1)
+                return True
+            except queue.Full:
+                continue
+        return False
+
     def produce() -> None:
         try:
             for item in items:
-                while not stop.is_set():
-                    try:
-                        slots.put(item, timeout=0.1)
-                        break
-                    except queue.Full:
-                        continue
-                if stop.is_set():
+                if not put(item):
                     return
-            slots.put(_DONE)
+            put(_DONE)
         except BaseException as exc:  # handed to the consumer, which raises it
-            slots.put(exc)
+            put(exc)
 
     worker = threading.Thread(target=produce, name="grainclass-reader", daemon=True)
     worker.start()
