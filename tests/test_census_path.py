@@ -350,3 +350,18 @@ def test_reads_wait_to_gather_only_from_a_pipe_that_holds_enough(monkeypatch):
             assert not pipes.gathers_reads(reader)
         assert pipes.gathers_reads(reader)
         assert real_fcntl(reader.fileno(), fcntl.F_GETPIPE_SZ) == pipes.PIPE_BYTES
+
+
+def test_records_read_again_as_lists_keep_their_place_in_the_stream(plantri_output):
+    """The census hands the records its fast path leaves to the general path as lists: they
+    keep their ids and record numbers (those of the same records read as lists directly)."""
+    data = plantri_output(9).read_bytes()
+    chunks = list(read_planar_code(io.BytesIO(data), "x", 20, raw=True))
+    (direct,) = read_planar_code(io.BytesIO(data), "x", 1000)
+    chunk = chunks[1]  # records 21..40 of 50
+    picked = np.array([0, 5, 19])
+    again = chunk.as_csr(picked)
+    expected = chunk.first_record - 1 + picked
+    assert list(again.grain_id) == [direct.grain_id[int(r)] for r in expected]
+    assert again.location.tolist() == direct.location[expected].tolist()
+    assert again.n_faces.tolist() == direct.n_faces[expected].tolist()

@@ -39,12 +39,18 @@ class PlanarCodeRecords:
         return len(self.starts) - 1
 
     def as_csr(self, records: np.ndarray) -> GrainBatch:
-        """The records numbered ``records`` parsed into a CSR batch (for the general path)."""
+        """The records numbered ``records`` parsed into a CSR batch (for the general path),
+        each keeping its position in the stream as its id and location."""
+        import dataclasses
         import io
+
+        from grainclass.arrow import decimal_strings
 
         header = b">>planar_code be<<" if self.big_endian else b">>planar_code<<"
         data = b"".join(self.buf[self.starts[r] : self.starts[r + 1]].tobytes() for r in records)
-        return next(iter(read_planar_code(io.BytesIO(header + data), self.source, len(records))))
+        batch = next(iter(read_planar_code(io.BytesIO(header + data), self.source, len(records))))
+        position = self.first_record + np.asarray(records, np.int64)
+        return dataclasses.replace(batch, grain_id=decimal_strings(position), location=position)
 
 
 def _read_header(stream: BinaryIO, head: bytes) -> tuple[bool, bytes]:
