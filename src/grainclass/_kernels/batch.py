@@ -212,7 +212,9 @@ def _classify_general_batch(
         if result[0] == OK:
             family[g], fundamental[g] = result[1], result[2]
             if result[3] >= 0:
-                trees_count[g], depth[g], tree_length[g] = result[3], result[4], result[5]
+                trees_count[g] = result[3]
+                if strings:  # else they were not computed (-1): left alone, as by the fast path
+                    depth[g], tree_length[g] = result[4], result[5]
 
 
 @njit(inline="always")
