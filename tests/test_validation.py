@@ -204,7 +204,16 @@ def test_grain_of_a_disconnected_surface_with_no_cyclic_order_is_invalid():
         ),
         ("1 2 3 4;0 4 5 2;0 1 5 3;0 2 5 4;0 3 5 1;-1 4 3 2", "invalid", "'-1' is not a face index"),
         ("", "invalid", "face 0 lists no neighbours"),
-        ("1 2 3 99999999999;0 4 5 2;0 1 5 3;0 2 5 4;0 3 5 1;1 4 3 2", "invalid", "2147483647"),
+        (
+            "1 2 3 99999999999;0 4 5 2;0 1 5 3;0 2 5 4;0 3 5 1;1 4 3 2",
+            "invalid",
+            "face 0: 99999999999 is too large for a face index",
+        ),
+        (  # the largest int32 is read, and out of range
+            "1 2 3 2147483647;0 4 5 2;0 1 5 3;0 2 5 4;0 3 5 1;1 4 3 2",
+            "invalid",
+            "face 0 lists face 2147483647, but the faces are numbered 0..5",
+        ),
     ],
 )
 def test_faces_field_edge_cases(tmp_path, faces, status, words):

@@ -17,7 +17,8 @@ def _parse_faces(buf, starts, ends, n_faces, degrees, neighbors):
     Fills ``n_faces[g]``, then per face its degree and neighbours (sized for the worst case,
     ``len(buf)``); returns ``(faces, entries, bad)`` with ``bad[g]`` True for a field with a
     character other than digits, blanks and ``;`` or with an empty face (a trailing ``;`` is
-    allowed): those get no faces, and the caller reads them again for the message.
+    allowed) or with an index past int32: those get no faces, and the caller reads them again
+    for the message.
     """
     n = starts.shape[0]
     bad = np.zeros(n, np.bool_)
@@ -31,9 +32,11 @@ def _parse_faces(buf, starts, ends, n_faces, degrees, neighbors):
                 int(buf[p]) if p < ends[g] else SEMICOLON
             )  # the end closes a face; int(): no uint8 wrap
             if ZERO <= c <= NINE:
-                # Clamped: an index past int32 is out of range for any grain, as validation says.
-                value = min(value * 10 + (c - ZERO), LARGEST)
+                value = value * 10 + (c - ZERO)
                 in_number = True
+                if value > LARGEST:
+                    bad[g] = True
+                    break
                 continue
             if in_number:
                 neighbors[m] = value

@@ -181,6 +181,8 @@ def parse_face_spans(
 
 def _faces_error(text: str) -> str:
     """What is wrong with a faces field the kernel could not read."""
+    from grainclass._kernels.text import LARGEST
+
     for f, face in enumerate(text.strip().rstrip(";").split(";")):
         tokens = face.split()
         if not tokens:
@@ -188,6 +190,8 @@ def _faces_error(text: str) -> str:
         for token in tokens:
             if not token.isdigit():
                 return f"face {f}: {token!r} is not a face index"
+            if int(token) > LARGEST:
+                return f"face {f}: {token} is too large for a face index"
     return "unreadable faces"
 
 
