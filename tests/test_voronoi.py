@@ -114,6 +114,14 @@ def test_unreadable_voro_line_is_an_invalid_row(tmp_path):
     assert rows[1]["error"].startswith(f"{path}:2: cannot read this cell")
 
 
+def test_voro_line_cut_off_inside_a_loop_is_unreadable(tmp_path):
+    path = tmp_path / "cells.voro"
+    path.write_text("1 0.5 (0,1,2) (0,2,3) (0,3,1) (1,3,2)\n2 0.5 (0,1,2) (0,2,3) (0,3,1) (1,3\n")
+    rows = classify(next(read_dataset(str(path)))).to_pylist()
+    assert [r["status"] for r in rows] == ["ok", "invalid"]
+    assert "a face loop is not closed" in rows[1]["error"]
+
+
 def test_unreadable_loops_are_invalid_rows_and_the_others_are_kept(tmp_path):
     tetra = "(0,1,2) (0,2,3) (0,3,1) (1,3,2)"
     voro = tmp_path / "cells.voro"

@@ -43,6 +43,8 @@ def read_voro(lines: Iterable[bytes], source: str, chunk_size: int) -> Iterator[
         try:
             if not paren or not 1 <= len(tokens) <= 3:
                 raise ValueError("expected: id [volume [area]] (loop) (loop) ...")
+            if loops.count(b"(") + 1 != loops.count(b")") or not loops.endswith(b")"):
+                raise ValueError("a face loop is not closed by ')' (a cut-off line?)")
             int(tokens[0])
             numbers = [float(t) for t in tokens[1:]] + [np.nan, np.nan]
         except ValueError as exc:
