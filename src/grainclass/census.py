@@ -29,6 +29,7 @@ from typing import TYPE_CHECKING
 
 from grainclass import DEFAULT_CHUNK_SIZE
 from grainclass.errors import GrainclassError
+from grainclass.vocabulary import TABLES
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -38,7 +39,6 @@ if TYPE_CHECKING:
 
 CHECKS = {"all": ("-u",), "flag": ("-u", "-c4"), "min_degree_4": ("-u", "-m4")}
 _COUNT_LINE = re.compile(rb"(\d+) triangulations (?:written|generated)")
-TABLES = ("classes", "round", "split")
 PROGRESS_TOPIC = "grainclass-census-progress"
 
 

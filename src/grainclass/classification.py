@@ -7,7 +7,7 @@ from dataclasses import dataclass
 import numpy as np
 import pyarrow as pa
 
-from grainclass import schema
+from grainclass import schema, vocabulary
 from grainclass._kernels import codes
 from grainclass._kernels.bits import MAX_BITSET_FACES
 from grainclass.arrow import (
@@ -66,7 +66,7 @@ def _error_messages(batch: GrainBatch, status: np.ndarray, err: np.ndarray) -> l
 
 
 def _class_codes(family: np.ndarray, truncations: np.ndarray, n_trees: np.ndarray) -> np.ndarray:
-    """Index into ``schema.CLASSES`` per grain (``codes.CLASS_OF``), -1 when not ok."""
+    """Index into ``vocabulary.CLASSES`` per grain (``codes.CLASS_OF``), -1 when not ok."""
     ok = family >= 0
     by_family = codes.CLASS_OF[
         np.where(ok, family, 0), np.clip(truncations, 0, 3), (n_trees == 2).view(np.int8)
@@ -83,8 +83,8 @@ class GrainCodes:
     """What the summaries count, per grain, as integer arrays (no strings, no Arrow).
 
     ``status`` and ``family`` are codes of :mod:`grainclass._kernels.codes`, ``class_code`` an
-    index into :data:`grainclass.schema.CLASSES`; ``truncations`` and ``class_code`` are -1 when
-    the grain is not ok, ``round_k`` also for sc, ``split_k`` unless the grain is fundamental
+    index into :data:`grainclass.vocabulary.CLASSES`; ``truncations`` and ``class_code`` are -1
+    when the grain is not ok, ``round_k`` also for sc, ``split_k`` unless the grain is fundamental
     flag; ``n_faces`` is -1 for an unreadable record. The per-grain table's columns take their
     nulls from these -1s, so that the rules of round<=k and of the split type are written once
     for rows and summaries (the census kernel's ``census_key`` is their compiled twin).
@@ -361,7 +361,7 @@ def _table(batch: GrainBatch, out: _Classified, types: _Types) -> pa.Table:
             if batch.boundary is None
             else booleans(batch.boundary == 1, batch.boundary >= 0)
         ),
-        schema.STATUS: strings_from_codes(status, codes.STATUS_NAMES),
+        schema.STATUS: strings_from_codes(status, vocabulary.STATUSES),
         schema.ERROR: (
             pa.nulls(g, pa.string()) if ok.all() else strings(_error_messages(batch, status, err))
         ),
@@ -372,8 +372,8 @@ def _table(batch: GrainBatch, out: _Classified, types: _Types) -> pa.Table:
             numbers(p_counts, pa.int32()),
             mask=None if ok.all() else booleans(~ok),
         ),
-        schema.FAMILY: strings_from_codes(family, codes.FAMILY_NAMES),
-        schema.CLASS: strings_from_codes(grain.class_code, schema.CLASSES),
+        schema.FAMILY: strings_from_codes(family, vocabulary.FAMILIES),
+        schema.CLASS: strings_from_codes(grain.class_code, vocabulary.CLASSES),
         schema.TRUNCATIONS: numbers(grain.truncations, pa.int32(), ok),
         schema.FUNDAMENTAL_FACES: numbers(fundamental, pa.int32(), ok),
         schema.TREES: trees,

@@ -14,6 +14,14 @@ from typing import TypeVar
 import click
 
 from grainclass import DEFAULT_CHUNK_SIZE, __version__
+from grainclass.vocabulary import (
+    ALL_TABLES,
+    CLASSES,
+    INPUT_FORMATS,
+    OUTPUT_FORMATS,
+    STATUSES,
+    TABLES,
+)
 
 T = TypeVar("T")
 
@@ -33,10 +41,6 @@ Exit codes:
   2    usage error
   130  interrupted (finished parts are kept: the same command resumes)
 """
-
-INPUT_FORMATS = ("auto", "adjacency", "planar_code", "evolver", "voro", "neper", "loops")
-STATUSES = ("ok", "degenerate", "non_simple", "invalid")
-CLASSES = ("stacked", "flag", "flag+1", "flag+1+1", "flag+2", "flag>=3", "sc", "sc+1", "sc>=2")
 
 
 def _key_value(ctx: click.Context, param: click.Parameter, value: str) -> tuple[str, str]:
@@ -67,7 +71,7 @@ def _input_options(*format_flags: str, types: bool | None = True):
         click.option(
             *format_flags,
             "input_format",
-            type=click.Choice(INPUT_FORMATS),
+            type=click.Choice(["auto", *INPUT_FORMATS]),
             default="auto",
             show_default=True,
             help="Input format; 'auto' sniffs each input.",
@@ -212,13 +216,13 @@ def classify_cmd(
 @click.option(
     "--table",
     "table_name",
-    type=click.Choice(["classes", "round", "split", "geometry"]),
+    type=click.Choice(ALL_TABLES),
     help="Print only this table (default: classes, round and split).",
 )
 @click.option(
     "--format",
     "output_format",
-    type=click.Choice(["text", "csv", "markdown", "latex", "json", "parquet"]),
+    type=click.Choice(OUTPUT_FORMATS),
     help="Output format (default: from the -o extension, else text).",
 )
 @click.option(
@@ -256,7 +260,7 @@ def summarize_cmd(
     from grainclass.errors import GrainclassError
     from grainclass.pipeline import tallies
     from grainclass.render import EXTENSIONS, render
-    from grainclass.summary import TABLES, summarize
+    from grainclass.summary import summarize
 
     fmt = output_format or EXTENSIONS.get(os.path.splitext(output)[1].lower(), "text")
     tables = (table_name,) if table_name else TABLES
@@ -286,7 +290,7 @@ def summarize_cmd(
 @click.option(
     "--format",
     "output_format",
-    type=click.Choice(["text", "csv", "markdown", "latex", "json", "parquet"]),
+    type=click.Choice(OUTPUT_FORMATS),
     help="Output format (default: from the -o extension, else text).",
 )
 @click.option("-o", "--output", default="-", metavar="FILE", help="Write here instead of stdout.")

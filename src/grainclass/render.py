@@ -10,7 +10,6 @@ import pandas as pd
 
 from grainclass.summary import Summary
 
-FORMATS = ("text", "csv", "markdown", "latex", "json", "parquet")
 EXTENSIONS = {
     ".txt": "text",
     ".csv": "csv",
@@ -109,7 +108,8 @@ def _records(table: pd.DataFrame) -> list[dict]:
 
 
 def render_frame(table: pd.DataFrame, fmt: str, title: str) -> str | bytes:
-    """One table on its own (``grainclass types``) in one of :data:`FORMATS`."""
+    """One table on its own (``grainclass types``) in one of
+    :data:`grainclass.vocabulary.OUTPUT_FORMATS`."""
     if fmt == "parquet":
         buffer = io.BytesIO()
         table.to_parquet(buffer, index=False)
@@ -127,7 +127,8 @@ def render_frame(table: pd.DataFrame, fmt: str, title: str) -> str | bytes:
 
 
 def render(summary: Summary, tables: tuple[str, ...], fmt: str) -> str | bytes:
-    """Render the headline and the named tables in one of :data:`FORMATS`.
+    """Render the headline and the named tables in one of
+    :data:`grainclass.vocabulary.OUTPUT_FORMATS`.
 
     Parquet holds one table, so ``fmt="parquet"`` needs exactly one name in ``tables``.
     """

@@ -62,17 +62,3 @@ GRAIN_SCHEMA = pa.schema(
 )
 
 COLUMNS = frozenset(GRAIN_SCHEMA.names)
-
-# The classes of the paper's Tables II, V, R and E, in their column order.
-CLASSES = (
-    "stacked",
-    "flag",
-    "flag+1",
-    "flag+1+1",
-    "flag+2",
-    "flag>=3",
-    "sc",
-    "sc+1",
-    "sc>=2",
-)
-STATUSES = ("ok", "degenerate", "non_simple", "invalid")

@@ -11,7 +11,7 @@ import pandas as pd
 import pyarrow as pa
 import pyarrow.compute as pc
 
-from grainclass import schema
+from grainclass import schema, vocabulary
 from grainclass._kernels import codes as kernel_codes
 
 if TYPE_CHECKING:
@@ -28,7 +28,6 @@ KEYS = [
 ]
 COLUMNS = [*KEYS, schema.N_TRIANGLES, schema.WEINBERG, schema.ISOPERIMETRIC, schema.BOUNDARY]
 ROUND_LEVELS = range(7)
-TABLES = ("classes", "round", "split")  # printed by default; "geometry" on request
 COUNT, TRIANGLES = "count", "triangles"
 Q_COUNT, Q_SUM, Q_SQUARES = "q_count", "q_sum", "q_squares"
 SUMS = [COUNT, TRIANGLES, Q_COUNT, Q_SUM, Q_SQUARES]
@@ -244,10 +243,10 @@ def _counts(
         q_sums = np.zeros(groups, np.int64), np.zeros(groups), np.zeros(groups)
     return pd.DataFrame(
         {
-            schema.STATUS: _names(status, kernel_codes.STATUS_NAMES),
+            schema.STATUS: _names(status, vocabulary.STATUSES),
             schema.N_FACES: np.where(n_faces >= 0, n_faces, np.nan),
-            schema.FAMILY: _names(family, kernel_codes.FAMILY_NAMES),
-            schema.CLASS: _names(class_code, schema.CLASSES),
+            schema.FAMILY: _names(family, vocabulary.FAMILIES),
+            schema.CLASS: _names(class_code, vocabulary.CLASSES),
             schema.ROUND_K: np.where(round_k >= 0, round_k, np.nan),
             schema.SPLIT_K: np.where(split_k >= 0, split_k, np.nan),
             TRIANGLES: triangles,
@@ -311,7 +310,7 @@ def _headline(counts: pd.DataFrame, distinct_types: int | None) -> dict[str, flo
     faces = float((ok[schema.N_FACES] * ok[COUNT]).sum())
     return {
         "grains": int(counts[COUNT].sum()),
-        **{status: int(by_status.get(status, 0)) for status in schema.STATUSES},
+        **{status: int(by_status.get(status, 0)) for status in vocabulary.STATUSES},
         "mean_faces": faces / grains if grains else float("nan"),
         "triangle_faces_percent": (
             100.0 * float(ok[TRIANGLES].sum()) / faces if faces else float("nan")
@@ -329,13 +328,13 @@ def class_counts(counts: pd.DataFrame) -> pd.DataFrame:
     table = ok.pivot_table(
         index=schema.N_FACES, columns=schema.CLASS, values=COUNT, aggfunc="sum", fill_value=0
     )
-    table = table.reindex(columns=list(schema.CLASSES), fill_value=0)
+    table = table.reindex(columns=list(vocabulary.CLASSES), fill_value=0)
     table.insert(0, "all", table.sum(axis=1))
     table.index = table.index.astype("int64").astype(str)
     table.loc["total"] = table.sum(axis=0)
     table.index.name = "n"
     table.columns.name = None
-    return table.reset_index().astype({c: "int64" for c in ["all", *schema.CLASSES]})
+    return table.reset_index().astype({c: "int64" for c in ["all", *vocabulary.CLASSES]})
 
 
 def round_percentages(counts: pd.DataFrame, n_values: tuple[int, ...] = ()) -> pd.DataFrame:

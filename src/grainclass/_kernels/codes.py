@@ -5,13 +5,13 @@ Kept as plain module-level ints (and one constant array) so that numba folds the
 
 import numpy as np
 
-# Grain status (the ``status`` column); PENDING only between the fast and the general path.
+# Grain status, an index into ``vocabulary.STATUSES``; PENDING only between the fast and the
+# general path.
 PENDING = -1
 OK = 0
 DEGENERATE = 1
 NON_SIMPLE = 2
 INVALID = 3
-STATUS_NAMES = ("ok", "degenerate", "non_simple", "invalid")
 
 # What is wrong with a grain; the kernels also write two integers (a, b) of detail.
 E_NONE = 0
@@ -30,13 +30,12 @@ E_UNORDERED = 12  # not a triangulation and the lists are not cyclic: cannot emb
 E_NOT_SPHERE = 13  # 3n - 6 adjacencies but no sphere (the triangle at face a is wrong)
 E_NON_SIMPLE = 14  # a corner where a > 3 faces meet, one of them face b
 
-# Families (the ``family`` column); -1 when the grain is not ok.
+# Families, an index into ``vocabulary.FAMILIES``; -1 when the grain is not ok.
 STACKED = 0
 FLAG = 1
 SC = 2
-FAMILY_NAMES = ("stacked", "flag", "sc")
 
-# A grain's class (an index into ``schema.CLASSES``) by [family, min(truncations, 3), whether it
+# A grain's class (an index into ``vocabulary.CLASSES``) by [family, min(truncations, 3), whether it
 # has two truncation trees]: the kernels that count read it per grain, the Python wrappers with
 # numpy's indexing, so the classes are defined once.
 CLASS_OF = np.array(

@@ -24,8 +24,8 @@ from grainclass.readers.neper import looks_like_neper, read_neper
 from grainclass.readers.pipes import enlarge_pipe
 from grainclass.readers.planar_code import PlanarCodeRecords, read_planar_code
 from grainclass.readers.voro import looks_like_voro, read_voro
+from grainclass.vocabulary import INPUT_FORMATS
 
-FORMATS = ("adjacency", "planar_code", "evolver", "voro", "neper", "loops")
 _EVOLVER = re.compile(rb"(?im)^\s*(vertices|torus_filled|torus|periods)\s*(//.*)?$")
 
 
@@ -151,8 +151,8 @@ def read_dataset(
     """
     if isinstance(paths, str):
         paths = [paths]
-    if format is not None and format not in FORMATS:
-        raise ValueError(f"unknown format {format!r}; expected one of {', '.join(FORMATS)}")
+    if format is not None and format not in INPUT_FORMATS:
+        raise ValueError(f"unknown format {format!r}; expected one of {', '.join(INPUT_FORMATS)}")
     paths = _expand(paths)
     formats = [_sniff_path(path, format) for path in paths]
     # Consecutive .fe files are read as one dataset (standard input cannot be one of them).

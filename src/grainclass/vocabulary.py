@@ -1,0 +1,26 @@
+"""The words grainclass reads and writes: statuses, families, classes, formats and tables.
+
+Plain tuples in a module that imports nothing, so that the command line offers them as choices
+without loading numpy, pyarrow or numba (``grainclass --help`` stays fast), and every module
+that names them takes them from here.
+"""
+
+# The ``status`` column; a status code of ``_kernels.codes`` indexes this.
+STATUSES = ("ok", "degenerate", "non_simple", "invalid")
+
+# The ``family`` column; a family code of ``_kernels.codes`` indexes this.
+FAMILIES = ("stacked", "flag", "sc")
+
+# The ``class`` column: the columns of the paper's Tables II, V, R and E, in their order
+# (``_kernels.codes.CLASS_OF`` gives the index).
+CLASSES = ("stacked", "flag", "flag+1", "flag+1+1", "flag+2", "flag>=3", "sc", "sc+1", "sc>=2")
+
+# Formats of grain inputs (sniffed when not named).
+INPUT_FORMATS = ("adjacency", "planar_code", "evolver", "voro", "neper", "loops")
+
+# Formats of summaries and type tables.
+OUTPUT_FORMATS = ("text", "csv", "markdown", "latex", "json", "parquet")
+
+# The summary tables printed by default, in order; "geometry" only on request.
+TABLES = ("classes", "round", "split")
+ALL_TABLES = (*TABLES, "geometry")
