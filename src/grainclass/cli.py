@@ -33,6 +33,15 @@ Exit codes:
   130  interrupted (no partial output file is left behind)
 """
 
+VORONOI_EXIT_CODES = """\b
+Exit codes:
+  0    success
+  1    the tessellation failed (seeds Voro++ cannot separate) or the output could not be
+       written
+  2    usage error
+  130  interrupted (no partial output file is left behind)
+"""
+
 CENSUS_EXIT_CODES = """\b
 Exit codes:
   0    every part done, every cross-check passed
@@ -174,9 +183,10 @@ def classify_cmd(
 ) -> None:
     """Classify every grain of INPUT... into a per-grain Parquet table.
 
-    INPUT is adjacency text (one grain per line), plantri's planar_code, or Surface Evolver
-    datafiles (a folder stands for its *.fe files); '-' reads standard input, e.g.
-    `plantri 12 | grainclass classify - -o all12.parquet`.
+    INPUT is adjacency text (one grain per line), plantri's planar_code, Surface Evolver
+    datafiles (a folder stands for its *.fe files), Voro++ face loops or a Neper .tess file,
+    sniffed from the content; face-vertex loops must be named (--format loops). '-' reads
+    standard input, e.g. `plantri 12 | grainclass classify - -o all12.parquet`.
     """
     from grainclass.errors import GrainclassError
     from grainclass.parquet import GrainTableWriter
@@ -343,7 +353,7 @@ def types_cmd(
     _write(output, _as_bytes(render_frame(shown, fmt, f"{len(table)} types, most frequent first")))
 
 
-@cli.command("voronoi", epilog=EXIT_CODES)
+@cli.command("voronoi", epilog=VORONOI_EXIT_CODES)
 @click.argument("n_seeds", type=click.IntRange(min=1), metavar="N")
 @click.option("--seed", type=int, help="Random seed: the same seed gives the same grains.")
 @click.option(
