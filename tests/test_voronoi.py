@@ -289,3 +289,29 @@ def test_seeds_closer_than_voro_can_separate_are_refused():
     for bad in (np.vstack([points, points[3] + SAFETY / 2]), across):
         with pytest.raises(GrainclassError, match="closer"):
             _check_spacing(bad, 1024.0)
+
+
+def test_key_value_fields_read_alike_in_adjacency_text_and_face_loops(tmp_path):
+    """The same fields after the same tetrahedron, as adjacency lists and as corner loops: the
+    same volumes, boundary flags and messages."""
+    fields = ["volume=2\tboundary=yes", "volume=abc", "nokv", "boundary=maybe", "area=1.5"]
+    adjacency = tmp_path / "t.txt"
+    adjacency.write_text(
+        "".join(f"{g}\t1 2 3;0 3 2;0 1 3;0 2 1\t{f}\n" for g, f in enumerate(fields))
+    )
+    loops = tmp_path / "t.loops"
+    loops.write_text("".join(f"{g}\t0 1 2;0 2 3;0 3 1;1 3 2\t{f}\n" for g, f in enumerate(fields)))
+    expected_errors = [
+        None,
+        "volume='abc' is not a number",
+        "field 'nokv' is not key=value",
+        "boundary='maybe': expected 1/0, true/false or yes/no",
+        None,
+    ]
+    for path, fmt in ((adjacency, None), (loops, "loops")):
+        rows = classify(next(read_dataset(str(path), format=fmt))).to_pylist()
+        assert [r["status"] for r in rows] == ["ok", "invalid", "invalid", "invalid", "ok"], fmt
+        errors = [r["error"] and r["error"].split(": ", 1)[1] for r in rows]
+        assert errors == expected_errors, fmt
+        assert (rows[0]["volume"], rows[0]["boundary"]) == (2.0, True), fmt
+        assert (rows[4]["area"], rows[4]["boundary"]) == (1.5, None), fmt

@@ -9,7 +9,7 @@ kept as string columns.
 from __future__ import annotations
 
 import itertools
-from collections.abc import Iterable, Iterator
+from collections.abc import Iterable, Iterator, Sequence
 
 import numpy as np
 
@@ -47,23 +47,14 @@ class _Chunk:
             self.boundary.append(-1)
             return
         grain_id = fields[0].strip() if len(fields) > 1 else (line.split() or [""])[0]
-        values: dict[str, str] = {}
         try:
             if len(fields) < 2:
                 raise ValueError("expected a grain id, a TAB and the faces")
-            for text in fields[2:]:
-                key, sep, value = text.partition("=")
-                if not sep or not key.strip():
-                    raise ValueError(f"field {text!r} is not key=value")
-                values[key.strip()] = value.strip()
-            floats = {key: float(values.pop(key, "nan")) for key in FLOAT_KEYS}
-            flag = values.pop("boundary", None)
-            if flag is not None and flag.lower() not in BOOLEANS:
-                raise ValueError(f"boundary={flag!r}: expected 1/0, true/false or yes/no")
-            boundary = -1 if flag is None else BOOLEANS[flag.lower()]
+            floats, flag, values = key_values(fields[2:])
         except ValueError as exc:
             self.add_unreadable(line_no, grain_id, str(exc))
             return
+        boundary = -1 if flag is None else int(flag)
         self._append(line_no, grain_id, fields[1].encode(), floats, boundary, values, None)
 
     def add_unreadable(self, line_no: int, grain_id: str, error: str) -> None:
@@ -177,6 +168,29 @@ def parse_face_spans(
     neighbors = np.empty(len(buf) + 1, np.int32)
     faces, entries, bad = _parse_faces(buf, starts, ends, n_faces, degrees, neighbors)
     return n_faces, degrees[:faces], neighbors[:entries], bad
+
+
+def key_values(fields: Sequence[str]) -> tuple[dict[str, float], bool | None, dict[str, str]]:
+    """The ``key=value`` fields of a grain's line (adjacency text, face loops): ``volume`` and
+    ``area`` as floats (NaN when absent), the ``boundary`` flag (None when absent) and the
+    other keys' values as strings. Raises ValueError naming the field that cannot be read."""
+    values: dict[str, str] = {}
+    for text in fields:
+        key, sep, value = text.partition("=")
+        if not sep or not key.strip():
+            raise ValueError(f"field {text!r} is not key=value")
+        values[key.strip()] = value.strip()
+    floats = {}
+    for key in FLOAT_KEYS:
+        number = values.pop(key, None)
+        try:
+            floats[key] = np.nan if number is None else float(number)
+        except ValueError:
+            raise ValueError(f"{key}={number!r} is not a number") from None
+    flag = values.pop("boundary", None)
+    if flag is not None and flag.lower() not in BOOLEANS:
+        raise ValueError(f"boundary={flag!r}: expected 1/0, true/false or yes/no")
+    return floats, None if flag is None else bool(BOOLEANS[flag.lower()]), values
 
 
 def _faces_error(text: str) -> str:

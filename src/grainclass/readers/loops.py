@@ -2,7 +2,8 @@
 
 Text layout, one grain per line: ``id<TAB>loops[<TAB>key=value...]`` where the loops are
 separated by ``;`` and each loop lists the grain's corner ids around one face, separated by
-spaces. ``volume`` and ``area`` are read as floats, as in the adjacency format.
+spaces. ``volume``, ``area`` and ``boundary`` are read as in the adjacency format; other keys
+are not kept.
 
 Two faces are adjacent where they share an edge (two consecutive corners); walking a face's loop
 gives its neighbours in cyclic order. A corner on only two faces (an edge split in two) does not
@@ -17,9 +18,7 @@ from collections.abc import Iterable, Iterator, Sequence
 import numpy as np
 
 from grainclass.batch import GrainBatch, offsets_from_counts, run_indices, tri_state
-from grainclass.readers.adjacency import parse_face_fields
-
-FLOAT_KEYS = ("volume", "area")
+from grainclass.readers.adjacency import key_values, parse_face_fields
 
 
 def batch_from_loops(
@@ -72,25 +71,40 @@ class LoopText:
     def __init__(self, source: str, unreadable: str) -> None:
         self._rows = _Rows(source, "line")
         self._texts: list[bytes] = []
+        self._boundary: list[bool | None] = []
         self.unreadable = unreadable
 
     def __len__(self) -> int:
         return len(self._texts)
 
-    def add(self, grain_id: str, line_no: int, loops: bytes, volume: float, area: float) -> None:
+    def add(
+        self,
+        grain_id: str,
+        line_no: int,
+        loops: bytes,
+        volume: float,
+        area: float,
+        boundary: bool | None = None,
+    ) -> None:
         self._rows.add(grain_id, line_no, volume, area, None)
         self._texts.append(loops)
+        self._boundary.append(boundary)
 
     def add_unreadable(self, grain_id: str, line_no: int, message: str) -> None:
         self._rows.add(grain_id, line_no, np.nan, np.nan, message)
         self._texts.append(b"")
+        self._boundary.append(None)
 
     def batch(self) -> GrainBatch:
         loop_counts, loop_lengths, corners, bad = parse_face_fields(self._texts)
         for g in np.flatnonzero(bad):
             self._rows.errors.setdefault(int(g), self.unreadable)
+        told = any(flag is not None for flag in self._boundary)
         return self._rows.batch(
-            loop_counts, offsets_from_counts(loop_lengths), corners.astype(np.int64), None
+            loop_counts,
+            offsets_from_counts(loop_lengths),
+            corners.astype(np.int64),
+            self._boundary if told else None,
         )
 
 
@@ -172,13 +186,12 @@ def read_loops(lines: Iterable[bytes], source: str, chunk_size: int) -> Iterator
         try:
             if len(fields) < 2:
                 raise ValueError("expected a grain id, a TAB and the face loops")
-            values = dict(f.partition("=")[::2] for f in fields[2:])
-            volume, area = (float(values.get(key, "nan")) for key in FLOAT_KEYS)
+            floats, boundary, _ = key_values(fields[2:])
         except ValueError as exc:
-            message = str(exc) if "expected" in str(exc) else f"cannot read the loops ({exc})"
-            rows.add_unreadable(grain_id, line_no, message)
+            rows.add_unreadable(grain_id, line_no, str(exc))
         else:
-            rows.add(grain_id, line_no, fields[1].strip(" ;").encode(), volume, area)
+            loops = fields[1].strip(" ;").encode()
+            rows.add(grain_id, line_no, loops, floats["volume"], floats["area"], boundary)
         if len(rows) >= chunk_size:
             yield rows.batch()
             rows = LoopText(source, rows.unreadable)
