@@ -85,6 +85,15 @@ class GrainBatch:
         """Number of faces of each grain (int64, shape (G,))."""
         return np.diff(self.face_offsets)
 
+    @property
+    def isoperimetric(self) -> np.ndarray | None:
+        """Isoperimetric quotient Q = 36 pi V^2 / S^3 of each grain (NaN where its volume or
+        area is missing), or None when the input gives no volumes or no areas."""
+        if self.volume is None or self.area is None:
+            return None
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return 36 * np.pi * self.volume**2 / self.area**3
+
     @classmethod
     def from_lists(
         cls,

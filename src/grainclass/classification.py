@@ -341,10 +341,6 @@ def _table(batch: GrainBatch, out: _Classified, types: _Types) -> pa.Table:
     is_flag = split_k >= 0
     with_type = types.computed
     volume, area = batch.volume, batch.area
-    isoperimetric = None
-    if volume is not None and area is not None:
-        with np.errstate(divide="ignore", invalid="ignore"):
-            isoperimetric = 36 * np.pi * volume**2 / area**3
     grain_id = batch.grain_id
     if not isinstance(grain_id, pa.Array):
         grain_id = strings(grain_id)
@@ -388,7 +384,7 @@ def _table(batch: GrainBatch, out: _Classified, types: _Types) -> pa.Table:
         schema.CHIRALITY: numbers(types.chirality, pa.int8(), with_type),
         schema.VOLUME: _floats(volume, g),
         schema.AREA: _floats(area, g),
-        schema.ISOPERIMETRIC: _floats(isoperimetric, g),
+        schema.ISOPERIMETRIC: _floats(batch.isoperimetric, g),
     }
     table = pa.table(columns, schema=schema.GRAIN_SCHEMA)
     for key, values in batch.attributes.items():

@@ -153,8 +153,7 @@ def tally_batch(
         codes, code_hashes = grain_codes_and_type_hashes(batch)
     else:
         codes = grain_codes(batch)
-    volume, area = getattr(batch, "volume", None), getattr(batch, "area", None)
-    boundary = getattr(batch, "boundary", None)
+    boundary = batch.boundary
     keep = None
     if boundary is not None and not include_boundary:
         keep = boundary != 1
@@ -171,10 +170,9 @@ def tally_batch(
         codes.split_k,
     ]
     triangles = codes.triangles
-    q = None
-    if volume is not None and area is not None:
-        with np.errstate(divide="ignore", invalid="ignore"):
-            q = np.where(ok, 36 * np.pi * volume**2 / area**3, np.nan)
+    q = batch.isoperimetric
+    if q is not None:
+        q = np.where(ok, q, np.nan)
     if keep is not None:
         keys = [column[keep] for column in keys]
         triangles = triangles[keep]
