@@ -238,7 +238,9 @@ def _small_record(buf, starts, r, big_endian, adj, following, stamp):
 def census_key(n, family, truncations, trees, split):
     """The group an ok grain of at most 64 faces is counted in: family, class, faces, round
     (truncations, -1 for sc) and split (-1 unless fundamental flag), each shifted to be >= 0,
-    in 8 bits apiece (:func:`census_fields` reads them back)."""
+    in 8 bits apiece (:func:`census_fields` reads them back). The rules are those of
+    ``classification._grain_codes`` for rows; ``tests/test_census_path.py`` holds the two to
+    the same tables."""
     class_code = CLASS_OF[family, min(truncations, 3), 1 if trees == 2 else 0]
     round_k = -1 if family == SC else truncations
     split_k = split if family == FLAG and truncations == 0 else -1

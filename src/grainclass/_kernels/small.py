@@ -110,23 +110,19 @@ def _verdict(n, adj, indices, bad, listed, closed, reached, triangular):
 def _validate_small(n, nbr_offsets, neighbors, f0, adj, following, stamp):
     """``(ok, triangular)``: ok if grain (faces from ``f0``) is certainly a simple grain with
     consistent cyclic lists, and then the bitset of its triangular faces (its dual's degree-3
-    vertices, which reduction starts from: known here from the lists' lengths, they cost no
-    pass over the bitsets; validation and reduction of a planar_code record at n = 16: 296-310
-    -> 278-288 ns).
+    vertices, where reduction starts: known here from the lists' lengths).
 
     Fills ``adj`` (uint64[>=n]) and the corner table ``following`` (see :func:`next_stamp`).
-    One pass over the darts checks 6n - 12 of them, indices in range, no repeats, and counts
-    the corners whose triangle closes (:func:`_corner`). A dart determines its triangle, so
+    One pass over the 6n - 12 darts, O(n): indices in range, no repeats, and the count of
+    corners whose triangle closes (:func:`_corner`). A dart determines its triangle, so
     2n - 4 closed triangles use every dart: every dual face is a triangle, each face is in the
     list of each of its neighbours, F = 2n - 4 and, with connectivity, the Euler characteristic
     is 2: a sphere. Indices are masked to 0..63 so that bad input cannot index outside the
-    tables; it is rejected at the end. The checks accumulate in integers tested once at the
-    end, not in a flag or a branch per dart: an index out of range shows in the OR of all
-    indices or in the union of the lists, a repeat in a list's bitset holding fewer faces than
-    the list has entries (with the stamped table and unsigned indices, the validation at n = 16
-    went from 0.32 to 0.26 us, of a planar_code record from 0.37 to 0.27; counting repeats per
-    list, not per dart: a record 0.265-0.267 to 0.256-0.263 us). The corner that closes a
-    list, (v, last, first), is recorded after the others.
+    tables, and rejected at the end: the checks accumulate in integers tested once
+    (:func:`_verdict`), not in a branch per dart, which a predictor would miss (an index out of
+    range shows in the OR of all indices or in the union of the lists, a repeat in a list's
+    bitset holding fewer faces than the list has entries). The corner that closes a list,
+    (v, last, first), is recorded after the others.
     """
     if nbr_offsets[at(f0 + n)] - nbr_offsets[at(f0)] != 6 * n - 12:
         return False, ZERO
