@@ -51,7 +51,6 @@ def type_frequencies(
     grains: pa.Table | Iterable[pa.Table],
     n_faces: int | None = None,
     class_name: str | None = None,
-    top: int | None = None,
 ) -> pd.DataFrame:
     """A frequency table of grain types, most frequent first.
 
@@ -61,8 +60,6 @@ def type_frequencies(
         Classified grains (at least the columns in ``COLUMNS``); only ok grains count.
     n_faces, class_name : optional
         Keep only grains with this number of faces, or of this class.
-    top : int, optional
-        Keep the ``top`` most frequent types.
 
     Returns
     -------
@@ -91,7 +88,7 @@ def type_frequencies(
     table = table.reset_index()[OUTPUT].sort_values(
         ["count", schema.WEINBERG], ascending=[False, True], kind="stable"
     )
-    return table.head(top).reset_index(drop=True) if top else table.reset_index(drop=True)
+    return table.reset_index(drop=True)
 
 
 def vorotop_distribution(types: pd.DataFrame) -> str:
