@@ -29,8 +29,9 @@ Layout (Neper's ``doc/fileformat.rst``, format 2.0 and later; Neper writes one e
 
 A face's signed id in a polyhedron is positive when the face normal (right-handed along its
 vertex loop) points out of the polyhedron; the loops of a grain are its faces' vertex loops,
-reversed for negative ids, so that they all turn the same way seen from outside. Edge ``j`` of a
-face joins its vertices ``j`` and ``j + 1``, which is checked.
+reversed for negative ids, so that they all turn the same way seen from outside (checked: a
+wrong sign makes the grain invalid). Edge ``j`` of a face joins its vertices ``j`` and ``j + 1``,
+which is checked too.
 
 The grain id is the polyhedron id, its location the line of its entry. A grain is on the
 boundary when one of its faces belongs to no other polyhedron (a domain face); in a periodic
@@ -114,6 +115,8 @@ class _Sections:
         line_no, text = lines[0]
         try:
             (count,) = (int(t) for t in text.split())
+            if count < 0:
+                raise ValueError
         except ValueError:
             raise InputError(
                 self.source, f"**{name}: expected the number of entries, got {text!r}", line_no
@@ -203,13 +206,18 @@ def _faces(
         except ValueError:
             raise InputError(source, f"**face: expected integers in {what}", chunk[0][0]) from None
 
+    def take_count(what: str) -> int:
+        (number,) = take(1, what)
+        if number < 0:
+            raise InputError(source, f"**face: {what}: a count of {number}", tokens[k - 1][0])
+        return number
+
     for _ in range(count):
         line_no = tokens[k][0] if k < len(tokens) else end_line
-        face_id, n_vertices = take(2, "a face id and vertex count")
+        (face_id,) = take(1, "a face id and vertex count")
         what = f"face {face_id}"
-        loop = take(n_vertices, what)
-        (n_edges,) = take(1, what)
-        signed_edges = take(n_edges, what)
+        loop = take(take_count(what), what)
+        signed_edges = take(take_count(what), what)
         tail = tokens[k : k + _FACE_TAIL]
         try:
             if len(tail) < _FACE_TAIL:
@@ -394,4 +402,16 @@ def _polyhedron_loops(
         if loop is None:
             return None, f"{face_error} (line {face_line})"
         loops.append(loop if f > 0 else loop[::-1])
+    # Outward loops run along each edge once each way: a face turned the other way (a wrong
+    # sign) runs along an edge the same way as its neighbour, and would make the volume wrong.
+    along: dict[tuple[int, int], int] = {}
+    for f, loop in zip(signed, loops, strict=True):
+        for j in range(len(loop)):
+            edge = (loop[j], loop[(j + 1) % len(loop)])
+            if edge in along:
+                return None, (
+                    f"faces {along[edge]} and {abs(f)} both run from vertex {edge[0]} to "
+                    f"{edge[1]}: the sign of one of them is wrong"
+                )
+            along[edge] = abs(f)
     return loops, None
