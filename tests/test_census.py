@@ -7,6 +7,7 @@ real one) make parts slow, lie about counts or fail, so that the checks are seen
 
 from __future__ import annotations
 
+import json
 import os
 import signal
 import subprocess
@@ -196,6 +197,13 @@ def test_a_cross_check_that_fails_exits_1(tmp_path, plantri):
     assert "n=8   flag = plantri -u -c4                   2          999  MISMATCH" in done.stdout
     assert "n=9   flag + sc = plantri -u -m4              5            5  ok" in done.stdout
     assert "disagrees with plantri" in done.stderr
+    assert not json.loads((tmp_path / "c" / "provenance.json").read_text())["cross_checks_passed"]
+    # The wrong count is not kept: the same census with a plantri that counts right passes.
+    again = _census("8", "9", "--parts", "2", "--workers", "1", "-o", str(tmp_path / "c"), "-q")
+    assert again.returncode == 0, again.stderr
+    assert "n=8   flag = plantri -u -c4                   2            2  ok" in again.stdout
+    provenance = json.loads((tmp_path / "c" / "provenance.json").read_text())
+    assert provenance["cross_checks_passed"]
 
 
 def test_a_failed_part_is_reported_and_retried_on_the_next_run(tmp_path, plantri):
@@ -218,6 +226,12 @@ def test_a_failed_part_is_reported_and_retried_on_the_next_run(tmp_path, plantri
     again = _census(*args)
     assert again.returncode == 0, again.stderr
     assert "1 computed now, 2 from earlier runs" in again.stderr
+    assert (out / "provenance.json").exists()
+    # A later run that fails leaves the tables, but not the mark that they are its own.
+    (out / "parts" / "n11-part0001of0003.parquet").unlink()
+    assert _census(*args, "--plantri", failing).returncode == 1
+    assert (out / "classes.csv").exists()
+    assert not (out / "provenance.json").exists()
 
 
 def test_a_part_with_fewer_triangulations_than_plantri_reports_fails(tmp_path, plantri):
@@ -311,6 +325,20 @@ def test_the_same_census_runs_on_an_existing_cluster(client, tmp_path):
     written = pd.read_csv(tmp_path / "classes.csv", dtype={"n": str}).set_index("n")
     for n in (9, 10):
         assert tuple(int(written.loc[str(n), c]) for c in CLASS_COLUMNS) == TABLE_II[n]
+
+
+def test_a_part_counted_by_another_version_is_counted_again(client, tmp_path):
+    import pyarrow.parquet as pq
+
+    first = run_census([9], 2, tmp_path, client)
+    path = tmp_path / "parts" / "n09-part0001of0002.parquet"
+    table = pq.read_table(path)
+    about = json.loads(table.schema.metadata[b"grainclass.census"])
+    about["grainclass"] = "0.0.1"
+    pq.write_table(table.replace_schema_metadata({b"grainclass.census": json.dumps(about)}), path)
+    again = run_census([9], 2, tmp_path, client)
+    assert (again.computed, again.skipped) == (1, 1)
+    pd.testing.assert_frame_equal(again.summary.classes, first.summary.classes)
 
 
 def test_an_unreadable_checkpoint_is_computed_again(client, tmp_path):

@@ -195,10 +195,12 @@ class Checkpoints:
         import pyarrow as pa
         import pyarrow.parquet as pq
 
+        from grainclass import __version__
         from grainclass.atomic import atomic_output
 
         table = pa.Table.from_pandas(result.counts, preserve_index=False)
         about = {
+            "grainclass": __version__,
             "n": result.part.n,
             "index": result.part.index,
             "parts": result.part.parts,
@@ -211,10 +213,13 @@ class Checkpoints:
             pq.write_table(table.replace_schema_metadata(metadata), sink)
 
     def load_part(self, part: Part) -> PartResult | None:
-        """The part's result if it finished in an earlier run, else None (also for a file that
-        cannot be read: the part is then computed again and the file replaced)."""
+        """The part's result if it finished in an earlier run of this version of grainclass,
+        else None (also for a file that cannot be read: the part is then computed again and the
+        file replaced)."""
         import pyarrow as pa
         import pyarrow.parquet as pq
+
+        from grainclass import __version__
 
         path = self.part_path(part)
         if not path.exists():
@@ -223,6 +228,8 @@ class Checkpoints:
             table = pq.read_table(path)
             about = json.loads(table.schema.metadata[b"grainclass.census"])
         except (OSError, pa.ArrowException, KeyError, TypeError, ValueError):
+            return None
+        if about.get("grainclass") != __version__:  # counted by other code: count again
             return None
         counts = table.replace_schema_metadata(None).to_pandas()
         return PartResult(part, counts, about["grains"], about["plantri_count"], about["seconds"])
@@ -241,12 +248,23 @@ class Checkpoints:
         except (OSError, KeyError, TypeError, ValueError):
             return None
 
+    def forget_check(self, n: int, check: str) -> None:
+        """Drop plantri's count, so that the next run asks plantri again."""
+        self.check_path(n, check).unlink(missing_ok=True)
+
+    @property
+    def provenance_path(self) -> Path:
+        """Written last, when the tables are complete and current: its absence says they are
+        not."""
+        return self.directory / "provenance.json"
+
 
 @dataclass(frozen=True)
 class CrossCheck:
-    """One comparison of the census with plantri's own count."""
+    """One comparison of the census with plantri's own count (``check``, a key of CHECKS)."""
 
     n: int
+    check: str
     what: str
     census: int
     plantri: int
@@ -389,6 +407,8 @@ def run_census(
 
     start = time.perf_counter()
     store = Checkpoints(Path(directory))
+    # Tables left by an earlier run are not this run's until it writes them again.
+    store.provenance_path.unlink(missing_ok=True)
     all_parts = census_parts(ns, parts)
     results: dict[Part, PartResult] = {}
     for part in all_parts:
@@ -502,15 +522,13 @@ def cross_checks(
         of_n = ok[ok[schema.N_FACES] == n]
         by_class = of_n.groupby(schema.CLASS)[COUNT].sum()
         flag, sc = int(by_class.get("flag", 0)), int(by_class.get("sc", 0))
-        checks += [
-            CrossCheck(
-                n, "ok grains = plantri -u", int(of_n[COUNT].sum()), plantri_counts[n, "all"]
-            ),
-            CrossCheck(n, "flag = plantri -u -c4", flag, plantri_counts[n, "flag"]),
-            CrossCheck(
-                n, "flag + sc = plantri -u -m4", flag + sc, plantri_counts[n, "min_degree_4"]
-            ),
-        ]
+        ours = {"all": int(of_n[COUNT].sum()), "flag": flag, "min_degree_4": flag + sc}
+        for check, what in (
+            ("all", "ok grains = plantri -u"),
+            ("flag", "flag = plantri -u -c4"),
+            ("min_degree_4", "flag + sc = plantri -u -m4"),
+        ):
+            checks.append(CrossCheck(n, check, what, ours[check], plantri_counts[n, check]))
     return checks
 
 
@@ -533,6 +551,9 @@ def _finish(
         [Tally(counts, sum(r.grains for r in result.parts))], n_values=tuple(sorted(set(ns)))
     )
     result.checks = cross_checks(counts, plantri_counts)
+    for check in result.checks:
+        if not check.ok:  # a wrong count must not outlive this run: plantri is asked again
+            store.forget_check(check.n, check.check)
     result.provenance = {
         "grainclass": __version__,
         "plantri": client.submit(plantri_version, plantri, pure=False).result(),
