@@ -21,6 +21,7 @@ import subprocess
 import sys
 import threading
 import time
+import uuid
 from collections.abc import Callable, Iterable, Iterator, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass, field
@@ -423,6 +424,9 @@ def run_census(
             if found_count is not None:
                 counts[n, check] = found_count
 
+    # Keys of this run only: on a shared scheduler, another census (another directory, another
+    # plantri) must not be handed this one's results.
+    run = uuid.uuid4().hex[:12]
     futures = {}
     for part in all_parts:
         if part not in results:
@@ -431,7 +435,7 @@ def run_census(
                 part,
                 chunk_size,
                 plantri,
-                key=f"census-{part.name}",
+                key=f"census-{run}-{part.name}",
                 pure=False,
                 priority=part.n,
             )
@@ -446,7 +450,7 @@ def run_census(
                     n,
                     check,
                     plantri,
-                    key=f"census-n{n:02d}-{check}",
+                    key=f"census-{run}-n{n:02d}-{check}",
                     pure=False,
                     priority=n + 1,
                 )
