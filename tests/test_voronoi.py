@@ -56,6 +56,35 @@ def test_voronoi_is_deterministic_for_a_seed(tmp_path):
     assert "300 cells, volume 1 (box 1)" in result.stderr
 
 
+def test_voronoi_that_fails_its_checks_exits_1_and_says_why(tmp_path, monkeypatch):
+    """As if Voro++ had merged two corners into one of four faces in one cell."""
+    import grainclass.voronoi as voronoi
+
+    real = voronoi.poisson_voronoi
+
+    def with_a_bad_corner(*args, report, **kwargs):
+        yield from real(*args, report=report, **kwargs)
+        report.bad_corners += 1
+
+    monkeypatch.setattr(voronoi, "poisson_voronoi", with_a_bad_corner)
+    out = tmp_path / "pv.txt"
+    result = CliRunner().invoke(cli, ["voronoi", "50", "--seed", "1", "-q", "-o", str(out)])
+    assert result.exit_code == 1
+    assert "failed its checks (1 cell(s) with a corner not of three faces)" in result.stderr
+    assert len(out.read_text().splitlines()) == 50
+
+
+def test_voronoi_report_problems():
+    report = VoronoiReport(cells=8, volume=8.0)
+    assert report.problems(2.0) == []
+    report.volume = 7.9
+    report.one_sided_faces = 2
+    assert report.problems(2.0) == [
+        "2 face(s) seen from one side only",
+        "the cells' volume is 7.9, the box's 8",
+    ]
+
+
 def _voro_cells(n: int, seed: int) -> list[dict]:
     points = np.random.default_rng(seed).random((n, 3)) * 8
     domain = pyvoro2.OrthorhombicCell(((0, 8),) * 3, periodic=(True, True, True))

@@ -36,8 +36,8 @@ Exit codes:
 VORONOI_EXIT_CODES = """\b
 Exit codes:
   0    success
-  1    the tessellation failed (seeds Voro++ cannot separate) or the output could not be
-       written
+  1    the tessellation failed (seeds Voro++ cannot separate) or its checks (then the
+       output is written, for a look), or the output could not be written
   2    usage error
   130  interrupted (no partial output file is left behind)
 """
@@ -375,7 +375,8 @@ def voronoi_cmd(n_seeds: int, seed: int | None, box: float, output: str, quiet: 
     """A periodic Poisson-Voronoi tessellation of N uniform random seeds (Voro++), as grains.
 
     The paper's V-268402 data set is `grainclass voronoi 268402 -o pv.txt`. Every cell is checked
-    (three faces at each corner, every face seen from both sides) before it is written.
+    (three faces at each corner, every face seen from both sides, the cells filling the box);
+    a failed check exits 1.
     """
     from grainclass.errors import GrainclassError
     from grainclass.pipeline import Progress
@@ -412,6 +413,12 @@ def voronoi_cmd(n_seeds: int, seed: int | None, box: float, output: str, quiet: 
             f"(box {box**3:.12g}); cells with a corner not of three faces: "
             f"{report.bad_corners}; faces seen from one side: {report.one_sided_faces}",
             err=True,
+        )
+    problems = report.problems(box)
+    if problems:
+        raise click.ClickException(
+            f"the tessellation failed its checks ({'; '.join(problems)}); {output} is written, "
+            "but its grains are not those of the seeds' Voronoi tessellation"
         )
 
 

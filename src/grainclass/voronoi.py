@@ -50,6 +50,19 @@ class VoronoiReport:
     one_sided_faces: int = 0  # faces whose other cell does not list them back
     volume: float = 0.0
 
+    def problems(self, box: float) -> list[str]:
+        """What the checks found wrong with a tessellation of a cube of side ``box``: empty
+        when every corner has three faces, every face is seen from both sides and the cells
+        fill the box (to a relative 1e-9: their volumes are summed in floating point)."""
+        found = []
+        if self.bad_corners:
+            found.append(f"{self.bad_corners} cell(s) with a corner not of three faces")
+        if self.one_sided_faces:
+            found.append(f"{self.one_sided_faces} face(s) seen from one side only")
+        if abs(self.volume - box**3) > 1e-9 * box**3:
+            found.append(f"the cells' volume is {self.volume:.12g}, the box's {box**3:.12g}")
+        return found
+
 
 def poisson_voronoi(
     n_seeds: int,
