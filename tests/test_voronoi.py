@@ -289,6 +289,7 @@ def test_slabs_give_the_grains_of_one_whole_tessellation(whole_3000, slab_seeds)
     whole, _ = whole_3000
     slabbed, report = _grains(3000, 11, slab_seeds=slab_seeds)
     assert (report.cells, report.bad_corners, report.one_sided_faces) == (3000, 0, 0)
+    assert report.slabs_redone == 0
     assert report.volume == pytest.approx(1.0, rel=1e-12)
     assert slabbed.select(["grain_id", *KEYS]).equals(whole.select(["grain_id", *KEYS]))
     for column in ("volume", "area"):
@@ -301,6 +302,7 @@ def test_a_slab_whose_margin_is_too_thin_is_done_again(whole_3000, monkeypatch):
     # Half a seed spacing of margin: corners' empty spheres reach past it, the check sees it.
     monkeypatch.setattr("grainclass.voronoi.MARGIN_SPACINGS", 0.5)
     slabbed, report = _grains(3000, 11, slab_seeds=1000)
+    assert report.slabs_redone > 0
     assert report.one_sided_faces == 0
     assert slabbed.select(["grain_id", *KEYS]).equals(whole_3000[0].select(["grain_id", *KEYS]))
 

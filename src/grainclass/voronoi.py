@@ -49,6 +49,7 @@ class VoronoiReport:
     bad_corners: int = 0  # cells with a corner of more or fewer than three faces
     one_sided_faces: int = 0  # faces whose other cell does not list them back
     volume: float = 0.0
+    slabs_redone: int = 0  # slab tessellations done again with a wider margin
 
     def problems(self, box: float) -> list[str]:
         """What the checks found wrong with a tessellation of a cube of side ``box``: empty
@@ -113,6 +114,7 @@ def poisson_voronoi(
     pairs = []  # (seed, neighbour) of every face, for the check that faces are mutual
     for grains in _tessellate_slabs(scaled, side, slabs, margin):
         pairs.append(grains["pairs"])
+        report.slabs_redone += grains["redone"]
         yield from _slab_batches(grains, scale, source, chunk_size, report)
     owner, adjacent = np.concatenate(pairs, axis=1)
     forth, back = owner * n_seeds + adjacent, adjacent * n_seeds + owner
@@ -221,7 +223,9 @@ def _tessellate_slabs(points: np.ndarray, side: float, slabs: int, margin: float
             futures[k] = None  # the result goes once its grains are out
             wider = margin
             result = future.result()
+            redone = 0
             while result["redo"]:
+                redone += 1
                 wider *= 2
                 if 2 * wider + side / slabs >= side:
                     raise GrainclassError(
@@ -229,7 +233,7 @@ def _tessellate_slabs(points: np.ndarray, side: float, slabs: int, margin: float
                         "tessellate more seeds at a time (larger slab_seeds)"
                     )
                 result = pool.submit(_slab, points, side, k, slabs, wider).result()
-            yield result
+            yield result | {"redone": redone}
     finally:
         # A reader that stops early (a closed pipe, an error) does not wait for the other slabs.
         pool.shutdown(wait=True, cancel_futures=True)
