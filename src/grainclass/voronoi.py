@@ -10,7 +10,7 @@ Large tessellations go slab by slab. pyvoro2 hands back every cell as Python dic
 (about 8 KB a cell, and most of its time; its own checks of the input in Python take longer than
 Voro++ itself), so all cells at once would not fit in 2 GB. A slab of the box is tessellated
 with the seeds of a margin on either side (x and y stay periodic) by pyvoro2's Voro++ call
-directly (``pyvoro2._core.compute_box_standard`` of pyvoro2 0.8, the version pinned), on the
+directly (``pyvoro2._core.compute_box_standard`` of pyvoro2 0.8.0, pinned exactly), on the
 cores in parallel; only the face loops are asked for, and the corners are
 computed from the seeds (``_kernels/voronoi.py``). A slab cell is the true periodic cell when
 the empty sphere of each of its corners stays within the seeds present: this is checked for
