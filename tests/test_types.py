@@ -131,3 +131,16 @@ def test_types_and_summarize_refuse_a_parquet_file_that_is_not_a_grain_table(tmp
         result = runner.invoke(cli, [command, str(summary)])
         assert result.exit_code == 1
         assert f"{summary}: not a grainclass per-grain table: no column" in result.stderr
+
+
+def test_a_damaged_grain_table_is_named_not_a_traceback(tmp_path):
+    table = tmp_path / "grains.parquet"
+    runner = CliRunner()
+    assert runner.invoke(cli, ["classify", INPUTS[1], "-o", str(table), "-q"]).exit_code == 0
+    data = bytearray(table.read_bytes())
+    data[200:1200] = bytes(b ^ 0x5A for b in data[200:1200])  # inside the first row group
+    table.write_bytes(bytes(data))
+    for command in ("types", "summarize"):
+        result = runner.invoke(cli, [command, str(table)])
+        assert result.exit_code == 1
+        assert f"{table}: row group 0 cannot be read" in result.stderr

@@ -80,7 +80,8 @@ def _floats(values: np.ndarray | None, length: int) -> pa.Array:
 
 @dataclass(frozen=True)
 class GrainCodes:
-    """What the summaries count, per grain, as integer arrays (no strings, no Arrow).
+    """A grain's classification as integer arrays (no strings, no Arrow): what the summaries
+    count, and what the per-grain table's class, round and split columns are written from.
 
     ``status`` and ``family`` are codes of :mod:`grainclass._kernels.codes`, ``class_code`` an
     index into :data:`grainclass.vocabulary.CLASSES`; ``truncations`` and ``class_code`` are -1

@@ -102,4 +102,8 @@ def iter_grain_tables(path: str, columns: list[str]) -> Iterator[pa.Table]:
     if missing:
         raise InputError(path, f"not a grainclass per-grain table: no column {', '.join(missing)}")
     for group in range(parquet.num_row_groups):
-        yield parquet.read_row_group(group, columns=columns)
+        try:
+            table = parquet.read_row_group(group, columns=columns)
+        except (OSError, pa.ArrowInvalid) as exc:
+            raise InputError(path, f"row group {group} cannot be read ({exc})") from None
+        yield table
