@@ -209,6 +209,11 @@ def test_grain_of_a_disconnected_surface_with_no_cyclic_order_is_invalid():
             "invalid",
             "face 0: 99999999999 is too large for a face index",
         ),
+        (
+            "1 2 3 4;0 4 5 2;0 1 5 3;0 2 5 4;0 3 5 1;1 4 3 \u00b2",
+            "invalid",
+            "'\u00b2' is not a face",
+        ),
         (  # the largest int32 is read, and out of range
             "1 2 3 2147483647;0 4 5 2;0 1 5 3;0 2 5 4;0 3 5 1;1 4 3 2",
             "invalid",

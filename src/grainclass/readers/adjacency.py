@@ -202,7 +202,7 @@ def _faces_error(text: str) -> str:
         if not tokens:
             return f"face {f} lists no neighbours"
         for token in tokens:
-            if not token.isdigit():
+            if not (token.isascii() and token.isdigit()):  # int() takes "²" or "٣" too
                 return f"face {f}: {token!r} is not a face index"
             if int(token) > LARGEST:
                 return f"face {f}: {token} is too large for a face index"
