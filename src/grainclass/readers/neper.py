@@ -214,7 +214,7 @@ def _faces(
 
     for _ in range(count):
         line_no = tokens[k][0] if k < len(tokens) else end_line
-        (face_id,) = take(1, "a face id and vertex count")
+        (face_id,) = take(1, "a face id")
         what = f"face {face_id}"
         loop = take(take_count(what), what)
         signed_edges = take(take_count(what), what)
