@@ -143,6 +143,17 @@ def test_unreadable_voro_line_is_an_invalid_row(tmp_path):
     assert rows[1]["error"].startswith(f"{path}:2: cannot read this cell")
 
 
+def test_voro_area_before_volume_makes_unreadable_cells(tmp_path):
+    """A unit cube's cell written as "%i %F %v %t" (area 6, volume 1): read as volume 6 and
+    area 1, Q would be 36 pi 36: no body is so round."""
+    cube = "(0,3,2,1) (0,1,5,4) (1,2,6,5) (2,3,7,6) (3,0,4,7) (4,5,6,7)"
+    path = tmp_path / "cells.voro"
+    path.write_text(f"1 1 6 {cube}\n2 6 1 {cube}\n")
+    rows = classify(next(read_dataset(str(path)))).to_pylist()
+    assert [(r["status"], r["volume"]) for r in rows] == [("ok", 1.0), ("invalid", None)]
+    assert rows[1]["error"].startswith(f"{path}:2: cannot read this cell: volume 6 and area 1")
+
+
 def test_voro_line_cut_off_inside_a_loop_is_unreadable(tmp_path):
     path = tmp_path / "cells.voro"
     path.write_text("1 0.5 (0,1,2) (0,2,3) (0,3,1) (1,3,2)\n2 0.5 (0,1,2) (0,2,3) (0,3,1) (1,3\n")

@@ -50,8 +50,18 @@ def read_voro(lines: Iterable[bytes], source: str, chunk_size: int) -> Iterator[
         except ValueError as exc:
             rows.add_unreadable(grain_id, line_no, f"cannot read this cell: {exc}")
         else:
-            text = (paren + loops).translate(_AS_LOOP_TEXT)
-            rows.add(grain_id, line_no, text, numbers[0], numbers[1])
+            # No body has 36 pi V^2 > S^3: the two numbers are not %v then %F (a "%i %F %v %t"
+            # file would otherwise give every grain the other's volume and area).
+            volume, area = numbers[0], numbers[1]
+            if 36 * np.pi * volume**2 > (1 + 1e-6) * area**3:
+                message = (
+                    f"volume {volume:g} and area {area:g} cannot both be right "
+                    '(36 pi V^2 > S^3): expected a cell as voro++ -c "%i %v %F %t" writes it'
+                )
+                rows.add_unreadable(grain_id, line_no, f"cannot read this cell: {message}")
+            else:
+                text = (paren + loops).translate(_AS_LOOP_TEXT)
+                rows.add(grain_id, line_no, text, volume, area)
         if len(rows) >= chunk_size:
             yield rows.batch()
             rows = LoopText(source, unreadable)
