@@ -15,6 +15,7 @@ from click.testing import CliRunner
 from conftest import EXAMPLES, ROOT
 from grainclass import cli as cli_module
 from grainclass.cli import cli
+from grainclass.errors import EmptyInputWarning
 from grainclass.parquet import GrainTableWriter
 from grainclass.schema import GRAIN_SCHEMA
 
@@ -261,7 +262,8 @@ def test_summarize_says_when_a_table_or_an_average_has_nothing_to_show(runner):
         "flag grains by number of faces n and split type k:m (m = n-4-k)",
         "(none)",
     ]
-    nothing = runner.invoke(cli, ["summarize", "-", "--table", "classes"], input="\n")
+    with pytest.warns(EmptyInputWarning, match="-: no grains"):
+        nothing = runner.invoke(cli, ["summarize", "-", "--table", "classes"], input="\n")
     assert nothing.exit_code == 0
     assert nothing.stdout.splitlines()[0] == (
         "grains: 0 (ok 0, degenerate 0, non_simple 0, invalid 0); no ok grains to average; "
@@ -283,6 +285,21 @@ def test_python_m_grainclass_runs(tmp_path):
         check=True,
     )
     assert pq.read_table(io.BytesIO(result.stdout)).column("class").to_pylist() == ["flag"]
+
+
+def test_an_input_without_grains_is_named_in_a_warning(tmp_path):
+    empty = tmp_path / "empty.txt"
+    empty.write_text("# only a comment\n")
+    out = tmp_path / "g.parquet"
+    result = subprocess.run(
+        [sys.executable, "-m", "grainclass", "classify", "-", str(empty), "-o", str(out), "-q"],
+        input=CUBE_LINE,
+        capture_output=True,
+        text=True,
+        check=True,
+    )
+    assert result.stderr.splitlines() == [f"grainclass: warning: {empty}: no grains"]
+    assert pq.read_table(out).num_rows == 1
 
 
 def test_help_imports_nothing_heavy():

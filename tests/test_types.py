@@ -5,10 +5,12 @@ from __future__ import annotations
 import itertools
 import json
 
+import pytest
 from click.testing import CliRunner
 
 from conftest import EXAMPLES
 from grainclass.cli import cli
+from grainclass.errors import EmptyInputWarning
 from test_weinberg import CUBE_CODE
 
 INPUTS = [str(EXAMPLES / "polytopes.txt"), str(EXAMPLES / "plantri-10.pc")]
@@ -106,7 +108,8 @@ def test_code_hashes_are_the_hashes_of_the_code_strings():
 def test_types_of_no_grains_is_an_empty_table_with_the_usual_columns(tmp_path):
     empty = tmp_path / "empty.txt"
     empty.write_text("")
-    result = CliRunner().invoke(cli, ["types", str(empty), "--format", "csv"])
+    with pytest.warns(EmptyInputWarning, match="empty.txt: no grains"):
+        result = CliRunner().invoke(cli, ["types", str(empty), "--format", "csv"])
     assert result.exit_code == 0, result.output
     header = "weinberg,n_faces,p_vector,class,split,penalty,symmetry,count,fraction"
     assert result.stdout.splitlines() == [header]

@@ -8,6 +8,7 @@ from __future__ import annotations
 import gc
 import os
 import sys
+import warnings
 from collections.abc import Iterable, Iterator
 from typing import TypeVar
 
@@ -571,6 +572,11 @@ def _quiet_broken_pipe() -> None:
     sys.exit(1)
 
 
+def _show_warning(message, category, filename, lineno, file=None, line=None) -> None:
+    """A warning as a line of its own on standard error, without Python's source location."""
+    click.echo(f"grainclass: warning: {message}", err=True)
+
+
 def main() -> None:
     """Entry point: click's handling, except that Ctrl-C exits 130 as shells expect."""
     # Readers build millions of short-lived lists (freed by reference counting, not in
@@ -585,6 +591,7 @@ def main() -> None:
     # for matrices (0.1 s of CPU, taken from a producer such as plantri in the same pipe);
     # grainclass multiplies none large enough to use them.
     os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+    warnings.showwarning = _show_warning
     try:
         code = cli.main(standalone_mode=False)
     except click.ClickException as exc:

@@ -18,3 +18,8 @@ class InputError(GrainclassError):
 
 class OutputError(GrainclassError):
     """An output that cannot be written where it was asked for."""
+
+
+class EmptyInputWarning(UserWarning):
+    """An input that holds no grains (an empty file, comments only, a bare header): among
+    several, it would otherwise go unnoticed."""

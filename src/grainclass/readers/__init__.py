@@ -10,13 +10,14 @@ import io
 import os
 import re
 import sys
+import warnings
 from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
 from typing import BinaryIO
 
 from grainclass import DEFAULT_CHUNK_SIZE
 from grainclass.batch import GrainBatch
-from grainclass.errors import InputError
+from grainclass.errors import EmptyInputWarning, InputError
 from grainclass.readers.adjacency import read_adjacency
 from grainclass.readers.evolver import DEFAULT_TRIPLE_EDGES, read_evolver
 from grainclass.readers.loops import read_loops
@@ -172,18 +173,24 @@ def read_dataset(
         k += 1
         with _open(path) as stream:
             fmt = formats[k - 1] or sniff(stream.peek(4096)[:4096])
+            if fmt == "evolver":
+                raise InputError(path, "Surface Evolver input must be a file or a folder")
+            if fmt == "planar_code":
+                batches = read_planar_code(stream, path, chunk_size, raw_planar_code)
+            elif fmt == "voro":
+                batches = read_voro(stream, path, chunk_size)
+            elif fmt == "neper":
+                batches = read_neper(stream, path, chunk_size)
+            elif fmt == "loops":
+                batches = read_loops(stream, path, chunk_size)
+            else:
+                batches = read_adjacency(stream, path, chunk_size)
+            grains = 0
             try:
-                if fmt == "evolver":
-                    raise InputError(path, "Surface Evolver input must be a file or a folder")
-                if fmt == "planar_code":
-                    yield from read_planar_code(stream, path, chunk_size, raw_planar_code)
-                elif fmt == "voro":
-                    yield from read_voro(stream, path, chunk_size)
-                elif fmt == "neper":
-                    yield from read_neper(stream, path, chunk_size)
-                elif fmt == "loops":
-                    yield from read_loops(stream, path, chunk_size)
-                else:
-                    yield from read_adjacency(stream, path, chunk_size)
+                for batch in batches:
+                    grains += len(batch)
+                    yield batch
             except OSError as exc:
                 raise InputError(path, exc.strerror or str(exc)) from None
+            if not grains:
+                warnings.warn(f"{path}: no grains", EmptyInputWarning, stacklevel=2)
