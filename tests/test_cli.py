@@ -271,6 +271,19 @@ def test_summarize_says_when_a_table_or_an_average_has_nothing_to_show(runner):
     )
 
 
+def test_summarize_json_of_no_ok_grain_is_strict_json(runner):
+    """An average over no grains is null in JSON, not NaN (which strict parsers refuse)."""
+
+    def refuse(constant: str) -> None:
+        raise ValueError(f"{constant} is not JSON")
+
+    line = "g\t1 2;0 2;0 1\n"  # the trihedron: three 2-gons, degenerate
+    result = runner.invoke(cli, ["summarize", "-", "--format", "json"], input=line)
+    assert result.exit_code == 0, result.output
+    headline = json.loads(result.stdout, parse_constant=refuse)["headline"]
+    assert (headline["degenerate"], headline["mean_faces"]) == (1, None)
+
+
 def test_summarize_missing_input_exits_1(runner, tmp_path):
     result = runner.invoke(cli, ["summarize", str(tmp_path / "nope.parquet")])
     assert result.exit_code == 1

@@ -147,3 +147,15 @@ def test_a_damaged_grain_table_is_named_not_a_traceback(tmp_path):
         result = runner.invoke(cli, [command, str(table)])
         assert result.exit_code == 1
         assert f"{table}: row group 0 cannot be read" in result.stderr
+
+
+def test_types_as_markdown_and_latex_leave_missing_cells_empty():
+    # The tetrahedron is stacked: no split, no penalty.
+    runner = CliRunner()
+    tetrahedron = "(1,2,3,1,3,4,1,4,2,4,3,2,1)"
+    markdown = runner.invoke(cli, ["types", INPUTS[0], "--n", "4", "--format", "markdown"])
+    assert markdown.exit_code == 0, markdown.output
+    assert f"| {tetrahedron} | 4 | (4) | stacked |  |  | 24 | 1 | 1.0 |" in markdown.stdout
+    latex = runner.invoke(cli, ["types", INPUTS[0], "--n", "4", "--format", "latex"])
+    assert latex.exit_code == 0, latex.output
+    assert f"{tetrahedron} & 4 & (4) & stacked &  &  & 24 & 1 & 1.0 \\\\" in latex.stdout

@@ -82,9 +82,14 @@ def _text(table: pd.DataFrame) -> str:
     return table.to_string(index=False) if len(table) else "(none)"
 
 
+def _cells(table: pd.DataFrame) -> pd.DataFrame:
+    """Every cell as text, a missing one (None, NaN, pandas' NA) empty."""
+    return table.astype(object).where(table.notna(), "").map(str)
+
+
 def _markdown(table: pd.DataFrame) -> str:
     lines = ["| " + " | ".join(table.columns) + " |", "|" + "---:|" * len(table.columns)]
-    lines += ["| " + " | ".join(row) + " |" for row in table.itertuples(index=False)]
+    lines += ["| " + " | ".join(row) + " |" for row in _cells(table).itertuples(index=False)]
     return "\n".join(lines)
 
 
@@ -97,7 +102,8 @@ def _latex(table: pd.DataFrame) -> str:
         " & ".join(escape(c) for c in table.columns) + " \\\\",
         "\\hline",
     ]
-    lines += [" & ".join(escape(c) for c in row) + " \\\\" for row in table.itertuples(index=False)]
+    rows = _cells(table).itertuples(index=False)
+    lines += [" & ".join(escape(c) for c in row) + " \\\\" for row in rows]
     lines.append("\\end{tabular}")
     return "\n".join(lines)
 
@@ -118,7 +124,7 @@ def render_frame(table: pd.DataFrame, fmt: str, title: str) -> str | bytes:
         return json.dumps(_records(table), indent=2) + "\n"
     if fmt == "csv":
         return table.to_csv(index=False)
-    shown = table.astype(str).replace({"<NA>": "", "nan": "", "NaN": "", "None": ""})
+    shown = _cells(table)
     if fmt == "markdown":
         return f"**{title}**\n\n{_markdown(shown)}\n"
     if fmt == "latex":
@@ -139,10 +145,16 @@ def render(summary: Summary, tables: tuple[str, ...], fmt: str) -> str | bytes:
         summary.table(tables[0]).to_parquet(buffer, index=False)
         return buffer.getvalue()
     if fmt == "json":
-        payload: dict[str, object] = {"headline": summary.headline}
+        # JSON has no NaN: an average of no grains is null, as in the tables' records.
+        payload: dict[str, object] = {
+            "headline": {
+                key: None if isinstance(value, float) and not math.isfinite(value) else value
+                for key, value in summary.headline.items()
+            }
+        }
         for name in tables:
             payload[name] = _records(summary.table(name))
-        return json.dumps(payload, indent=2) + "\n"
+        return json.dumps(payload, indent=2, allow_nan=False) + "\n"
     parts = {"csv": [], "latex": [f"% {headline(summary)}"]}.get(fmt, [headline(summary)])
     for name in tables:
         if fmt == "csv":
