@@ -152,6 +152,7 @@ def weinberg(lists: list[list[int]]) -> tuple[tuple[int, ...], int, int]:
                 codes.append((_walk(around, start, first, turn), turn))
     best = min(code for code, _ in codes)
     turns = [turn for code, turn in codes if code == best]
+    # -1 when only right-turning walks (turn +1: the next side counter-clockwise) reach it.
     chirality = 0 if len(set(turns)) == 2 else (1 if turns[0] == -1 else -1)
     return best, len(turns), chirality
 

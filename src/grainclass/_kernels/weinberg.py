@@ -34,9 +34,10 @@ _LABEL = _USED - 1
 @njit
 def _walk(n, sigma, length, a, b, turn, best, state, gen, seen, code):
     """The first ``length`` entries of the Weinberg walk that leaves corner (a, b, sigma(a, b))
-    along its edge a -> b, turning by ``turn`` (-1 right, +1 left, in counter-clockwise steps
-    around a corner). Compares with ``best`` as it goes: returns -1 if the code is smaller
-    (``code`` then holds it), 0 if equal, +1 as soon as it is larger.
+    along its edge a -> b, turning by ``turn`` in counter-clockwise steps around a corner seen
+    from outside: +1 takes the edge after the one arrived by, a right turn; -1 a left turn.
+    Compares with ``best`` as it goes: returns -1 if the code is smaller (``code`` then holds
+    it), 0 if equal, +1 as soon as it is larger.
 
     ``seen`` holds, per dart, ``gen`` (the walk's stamp) in its high half, so nothing is reset
     per walk, the label of the dart's corner in its low bits and USED once the walk has left
@@ -111,8 +112,8 @@ def _weinberg(n, rot, off, sigma, faces, best, gen, seen, code, walks):
     for v in range(n):
         if faces[v] != smallest:
             continue
-        # The walks that go round face v first: along v -> x turning left (face v is left of
-        # that edge), along x -> v turning right (face v is right of it). Either way the other
+        # The walks that go round face v first: along v -> x turning right (face v is right of
+        # that edge), along x -> v turning left (face v is left of it). Either way the other
         # face of the first edge is x, and the opposite face is the third face at the start.
         for i in range(off[v], off[v + 1]):
             x = rot[at(i)]
@@ -139,12 +140,13 @@ def _weinberg(n, rot, off, sigma, faces, best, gen, seen, code, walks):
         if result <= 0:
             walks[kept, 2] = turn
             kept += 1
-    # The walks giving the smallest code: one per symmetry (reflections included).
-    right = 0
+    # The walks giving the smallest code: one per symmetry (reflections included). Chirality
+    # as VoroTop numbers it: -1 when only walks turning right reach the code, +1 only left.
+    left = 0
     for j in range(kept):
-        right += walks[j, 2] < 0
-    left = kept - right
-    chirality = 0 if right and left else (1 if right else -1)
+        left += walks[j, 2] < 0
+    right = kept - left
+    chirality = 0 if right and left else (-1 if right else 1)
     return kept, chirality, gen
 
 
