@@ -1,4 +1,5 @@
-"""`pipeline.prefetch`: reading ahead in a thread without losing order, errors or threads."""
+"""Reading ahead and mapping in threads (`pipeline.prefetch`, `parallel.map_ordered`) without
+losing order, results, errors or threads."""
 
 from __future__ import annotations
 
@@ -43,3 +44,44 @@ def test_prefetch_thread_ends_when_the_consumer_stops_with_the_queue_full():
     stream.close()
     reader.join(10)
     assert not reader.is_alive()
+
+
+@pytest.mark.parametrize("jobs", [1, 2, 4])
+def test_map_ordered_gives_what_a_failing_input_gave_before_its_error(jobs):
+    from grainclass.parallel import get_jobs, map_ordered, set_jobs
+
+    def items():
+        yield 1
+        yield 2
+        raise ValueError("the input broke")
+
+    before = get_jobs()
+    set_jobs(jobs)
+    try:
+        stream = map_ordered(lambda x: 10 * x, items())
+        assert [next(stream), next(stream)] == [10, 20]
+        with pytest.raises(ValueError, match="the input broke"):
+            next(stream)
+    finally:
+        set_jobs(before)
+
+
+def test_map_ordered_keeps_order_and_raises_a_workers_error_in_its_place():
+    from grainclass.parallel import get_jobs, map_ordered, set_jobs
+
+    def slow_first(x: int) -> int:
+        if x == 3:
+            raise ValueError("item 3")
+        if x == 0:
+            threading.Event().wait(0.05)  # finishes after the others
+        return x
+
+    before = get_jobs()
+    set_jobs(2)
+    try:
+        stream = map_ordered(slow_first, range(6))
+        assert [next(stream), next(stream), next(stream)] == [0, 1, 2]
+        with pytest.raises(ValueError, match="item 3"):
+            next(stream)
+    finally:
+        set_jobs(before)

@@ -75,8 +75,19 @@ def map_ordered(function: Callable[[T], R], items: Iterable[T]) -> Iterator[R]:
         return
     pool = _pool("batch")
     pending: collections.deque[Future[R]] = collections.deque()
+    iterator = iter(items)
     try:
-        for item in items:
+        while True:
+            try:
+                item = next(iterator)
+            except StopIteration:
+                break
+            except Exception:
+                # The input failed: the results of the items it gave first still come out, as
+                # they do with one job, and then its error.
+                while pending:
+                    yield pending.popleft().result()
+                raise
             pending.append(pool.submit(_in_worker, function, item))
             if len(pending) > _jobs:
                 yield pending.popleft().result()
