@@ -412,3 +412,10 @@ def test_no_types_leaves_weinberg_null_and_the_rest_equal(runner, tmp_path):
     assert (
         runner.invoke(cli, ["types", str(EXAMPLES / "polytopes.txt"), "--no-types"]).exit_code == 2
     )
+
+
+def test_summarize_round_rows_for_n_given_twice_come_once(runner):
+    args = ["summarize", str(EXAMPLES / "polytopes.txt"), "--table", "round", "--format", "csv"]
+    result = runner.invoke(cli, [*args, "--n", "6", "--n", "12", "--n", "6"])
+    assert result.exit_code == 0, result.output
+    assert [line.split(",")[0] for line in result.stdout.splitlines()[1:]] == ["all", "n=6", "n=12"]

@@ -446,7 +446,7 @@ def summarize(
     return Summary(
         headline=headline,
         classes=class_counts(counts),
-        round=round_percentages(counts, tuple(n_values)),
+        round=round_percentages(counts, tuple(dict.fromkeys(n_values))),  # a row per n, once
         split=split_counts(counts),
         geometry=geometry_table(counts),
     )
