@@ -267,7 +267,7 @@ def test_summarize_says_when_a_table_or_an_average_has_nothing_to_show(runner):
     assert nothing.exit_code == 0
     assert nothing.stdout.splitlines()[0] == (
         "grains: 0 (ok 0, degenerate 0, non_simple 0, invalid 0); no ok grains to average; "
-        "types not computed (--types)"
+        "0 distinct types"
     )
 
 
@@ -408,7 +408,9 @@ def test_no_types_leaves_weinberg_null_and_the_rest_equal(runner, tmp_path):
         with_types.drop_columns(["weinberg", "symmetry", "chirality"])
     )
     summary = runner.invoke(cli, ["summarize", str(tmp_path / "p.parquet")])
-    assert summary.stdout.splitlines()[0].endswith("types not computed (--types)")
+    assert summary.stdout.splitlines()[0].endswith(
+        "distinct types not known (--types, or tables classified with them)"
+    )
     assert (
         runner.invoke(cli, ["types", str(EXAMPLES / "polytopes.txt"), "--no-types"]).exit_code == 2
     )

@@ -84,6 +84,30 @@ def test_summarize_counts_a_type_once_from_rows_and_from_raw_input(tmp_path):
     assert json.loads(result.stdout)["headline"]["types"] == 245
 
 
+def test_distinct_types_are_counted_only_when_every_input_knows_its_grains_types(tmp_path):
+    """12 types among the 13 examples, 233 among the triangulations with n = 10 (none shared
+    but the dodecahedron's, which is not a triangulation of 10 vertices): 245 together."""
+    examples = tmp_path / "examples.parquet"
+    plain = tmp_path / "plain.parquet"
+    runner = CliRunner()
+    assert runner.invoke(cli, ["classify", INPUTS[0], "-o", str(examples), "-q"]).exit_code == 0
+    no_types = ["classify", INPUTS[1], "-o", str(plain), "-q", "--no-types"]
+    assert runner.invoke(cli, no_types).exit_code == 0
+
+    def types(*args: str) -> int | None:
+        result = runner.invoke(cli, ["summarize", *args, "--format", "json", "-q"])
+        assert result.exit_code == 0, result.output
+        return json.loads(result.stdout)["headline"]["types"]
+
+    assert types(str(examples)) == 12
+    assert types(str(examples), INPUTS[1], "--types") == 245
+    assert types(str(examples), INPUTS[1]) is None  # the raw input's types were not computed
+    assert types(str(examples), str(plain)) is None  # nor were those of the table's grains
+    bad = tmp_path / "bad.txt"
+    bad.write_text("g\t1 2;0 2;0 1\n")  # degenerate: no ok grain, no type, but known so
+    assert types(str(bad), "--types") == 0
+
+
 def test_code_hashes_are_the_hashes_of_the_code_strings():
     import numpy as np
 

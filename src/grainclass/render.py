@@ -42,7 +42,7 @@ def headline(summary: Summary) -> str:
         + (
             f"{h['types']} distinct types"
             if h["types"] is not None
-            else "types not computed (--types)"
+            else "distinct types not known (--types, or tables classified with them)"
         )
         + (
             f"; {h['boundary_excluded']} boundary grains left out"

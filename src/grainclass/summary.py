@@ -52,13 +52,16 @@ class Summary:
 class Tally:
     """A batch of grains reduced to what the tables need: grain counts (with their triangles and
     isoperimetric sums) by (status, n_faces, family, class, round_k, split_k), the 64-bit hashes
-    of its distinct Weinberg vectors, and how many grains were left out as cut by a boundary.
+    of its distinct Weinberg vectors, whether those are all its ok grains' (``typed``: else the
+    distinct types of a summary are unknown), and how many grains were left out as cut by a
+    boundary.
     """
 
     counts: pd.DataFrame
     grains: int
     type_hashes: np.ndarray = field(default_factory=lambda: np.zeros(0, np.uint64))
     boundary_excluded: int = 0
+    typed: bool = False
 
     def __len__(self) -> int:
         return self.grains
@@ -103,7 +106,10 @@ def tally_table(grains: pa.Table, include_boundary: bool = False) -> Tally:
         cut = pc.fill_null(grains.column(schema.BOUNDARY), False)
         excluded = pc.sum(cut).as_py() or 0
         grains = grains.filter(pc.invert(cut))
-    return Tally(tally(grains), len(grains), type_hashes(grains.column(schema.WEINBERG)), excluded)
+    weinberg = grains.column(schema.WEINBERG)
+    ok = pc.equal(grains.column(schema.STATUS), "ok")
+    typed = not pc.any(pc.and_(ok, pc.is_null(weinberg))).as_py()  # also for no ok grain at all
+    return Tally(tally(grains), len(grains), type_hashes(weinberg), excluded, typed)
 
 
 def _names(codes: np.ndarray, names: tuple[str, ...]) -> np.ndarray:
@@ -198,7 +204,7 @@ def tally_batch(
     counts = _counts(
         *rows, sums(triangles).astype(np.int64), np.bincount(group, minlength=groups), q_sums
     )
-    return Tally(counts, kept, hashes, boundary_excluded=len(batch) - kept)
+    return Tally(counts, kept, hashes, boundary_excluded=len(batch) - kept, typed=types)
 
 
 def _tally_records(batch: PlanarCodeRecords) -> Tally:
@@ -256,13 +262,12 @@ def _counts(
     )
 
 
-def _distinct(hashes: list[np.ndarray]) -> int | None:
+def _distinct(hashes: list[np.ndarray]) -> int:
     """Distinct values among the hash arrays, which are emptied (they can hold a 64-bit hash
-    per grain of a whole enumeration: joined and sorted in place, never copied twice); None
-    when there are none (no types computed, or no grain ok)."""
+    per grain of a whole enumeration: joined and sorted in place, never copied twice)."""
     joined = np.empty(sum(h.size for h in hashes), np.uint64)
     if not joined.size:
-        return None
+        return 0
     at = 0
     hashes.reverse()
     while hashes:
@@ -434,14 +439,17 @@ def summarize(
     [['6', 1, 1], ['total', 1, 1]]
     """
     items = [grains] if isinstance(grains, pa.Table) else grains
-    frames, hashes, excluded = [], [], 0
+    frames, hashes, excluded, typed = [], [], 0, True
     for item in items:
         part = item if isinstance(item, Tally) else tally_table(item, include_boundary)
         frames.append(part.counts)
         hashes.append(part.type_hashes)
         excluded += part.boundary_excluded
+        typed &= part.typed
     counts = merge_tallies(frames)
-    headline = _headline(counts, _distinct(hashes))
+    # Distinct types are known only if every part knows its grains' types: a count over some
+    # would pass for the whole.
+    headline = _headline(counts, _distinct(hashes) if typed else None)
     headline["boundary_excluded"] = excluded
     return Summary(
         headline=headline,
