@@ -175,6 +175,26 @@ def test_self_reference_and_lonely_face_are_invalid():
     assert "has 1 neighbour" in _row([[1], [0]])["error"]
 
 
+def test_non_simple_grain_is_non_simple_whichever_way_its_lists_turn():
+    # A sphere map found by a fuzzer: seven faces, 13 adjacencies, eight corners (7 - 13 + 8 =
+    # 2), two of them of four faces (2, 6, 4, 3 and 2, 4, 5, 6). Faces adjacent across one
+    # corner are side by side in lists at the other, which looked like triangles there.
+    lists = [
+        [4, 5, 6],
+        [2, 4, 3],
+        [1, 3, 6, 4],
+        [1, 4, 2],
+        [0, 6, 3, 1, 2, 5],
+        [0, 4, 6],
+        [0, 5, 2, 4],
+    ]
+    for turned in (lists, [nbrs[::-1] for nbrs in lists]):
+        for fast in (64, 0):
+            row = classify(GrainBatch.from_lists([turned]), max_bitset_faces=fast).to_pylist()[0]
+            assert row["status"] == "non_simple", row["error"]
+            assert "a corner where 4 faces meet" in row["error"]
+
+
 def test_non_simple_grain_with_scrambled_lists_is_invalid_and_says_why():
     # The square pyramid (non_simple when ordered), its lists in no cyclic order: with fewer than
     # 3n - 6 adjacencies the corners cannot be recovered from the graph.

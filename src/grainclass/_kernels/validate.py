@@ -155,6 +155,13 @@ def _orient(n, off, nb, adj, sign):
                     s = -1
                 else:
                     continue
+                # A triangle only if y's list has v and x side by side too: in a grain with a
+                # corner of four faces, two of them adjacent elsewhere look like one from v and
+                # x alone, and would impose a wrong sign.
+                dy = off[y + 1] - off[y]
+                q = _position(off, nb, y, v)
+                if nb[off[y] + (q + 1) % dy] != x and nb[off[y] + (q - 1 + dy) % dy] != x:
+                    continue
                 if sign[x] == 0:
                     sign[x] = s
                     queue[tail] = x
