@@ -200,11 +200,15 @@ def grain_codes_and_type_hashes(batch: GrainBatch) -> tuple[GrainCodes, np.ndarr
     return _csr_grain_codes(batch, out), hashes
 
 
-def _csr_grain_codes(batch: GrainBatch, out: _Classified) -> GrainCodes:
+def _csr_grain_codes(
+    batch: GrainBatch, out: _Classified, triangles: np.ndarray | None = None
+) -> GrainCodes:
+    """:class:`GrainCodes` of a classified CSR batch; ``triangles`` (per grain) are counted
+    here unless the caller has them."""
     from grainclass._kernels.columns import _triangle_counts
 
-    ok = out.status == codes.OK
-    triangles = _triangle_counts(batch.face_offsets, batch.nbr_offsets, ok)
+    if triangles is None:
+        triangles = _triangle_counts(batch.face_offsets, batch.nbr_offsets, out.status == codes.OK)
     n_faces = np.where(out.parsed, batch.n_faces, -1)
     split = out.belts[:, 0]
     return _grain_codes(
@@ -330,14 +334,12 @@ def _table(batch: GrainBatch, out: _Classified, types: _Types) -> pa.Table:
     g = len(batch)
     n_faces = batch.n_faces
     parsed, status, err, family = out.parsed, out.status, out.err, out.family
-    fundamental, n_trees, depth, belts = out.fundamental, out.n_trees, out.depth, out.belts
+    fundamental, depth, belts = out.fundamental, out.depth, out.belts
     ok = status == codes.OK
     has_trees = ok & (family != codes.STACKED)
     p_offsets, p_counts, triangles = _p_vectors(batch.face_offsets, batch.nbr_offsets, ok)
     trees = string_array(*_compact(out.tree_offsets, out.tree_bytes, out.tree_length), has_trees)
-    grain = _grain_codes(
-        np.where(parsed, n_faces, -1), status, family, fundamental, n_trees, belts[:, 0], triangles
-    )
+    grain = _csr_grain_codes(batch, out, triangles)
     split_k = grain.split_k
     is_flag = split_k >= 0
     with_type = types.computed

@@ -123,13 +123,10 @@ def grain_tables(
 def _require_types(path: str, table: pa.Table) -> None:
     """Refuse a table whose ok grains lack their Weinberg vectors (classified with
     ``--no-types``): counted, they would all vanish from the types."""
-    import pyarrow.compute as pc
-
-    from grainclass import schema
     from grainclass.errors import InputError
+    from grainclass.summary import untyped_grains
 
-    ok = pc.equal(table.column(schema.STATUS), "ok")
-    untyped = pc.sum(pc.and_(ok, pc.is_null(table.column(schema.WEINBERG)))).as_py()
+    untyped = untyped_grains(table)
     if untyped:
         raise InputError(
             path,

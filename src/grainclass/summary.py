@@ -106,10 +106,15 @@ def tally_table(grains: pa.Table, include_boundary: bool = False) -> Tally:
         cut = pc.fill_null(grains.column(schema.BOUNDARY), False)
         excluded = pc.sum(cut).as_py() or 0
         grains = grains.filter(pc.invert(cut))
-    weinberg = grains.column(schema.WEINBERG)
+    hashes = type_hashes(grains.column(schema.WEINBERG))
+    return Tally(tally(grains), len(grains), hashes, excluded, untyped_grains(grains) == 0)
+
+
+def untyped_grains(grains: pa.Table) -> int:
+    """The ok grains of per-grain rows without their Weinberg vector (classified with
+    ``--no-types``); 0 also for no ok grain at all."""
     ok = pc.equal(grains.column(schema.STATUS), "ok")
-    typed = not pc.any(pc.and_(ok, pc.is_null(weinberg))).as_py()  # also for no ok grain at all
-    return Tally(tally(grains), len(grains), type_hashes(weinberg), excluded, typed)
+    return pc.sum(pc.and_(ok, pc.is_null(grains.column(schema.WEINBERG)))).as_py() or 0
 
 
 def _names(codes: np.ndarray, names: tuple[str, ...]) -> np.ndarray:
