@@ -135,6 +135,20 @@ def test_loops_with_a_corner_of_four_faces_and_an_open_surface(tmp_path):
     assert (rows[2]["class"], rows[2]["penalty"]) == ("flag", 18)
 
 
+def test_loops_of_a_pinched_surface_are_not_a_grain(tmp_path):
+    """A cube whose opposite corners 0 and 6 are given one id: six faces meet at corner 0 in two
+    fans, the surface touches itself there, V - E + F = 7 - 12 + 6 = 1. Every edge still lies on
+    two faces and the face adjacency is the cube's, a simple grain's, so only the loops tell."""
+    path = tmp_path / "pinched.loops"
+    path.write_text(
+        "cube\t0 1 2 3;4 7 6 5;0 4 5 1;1 5 6 2;2 6 7 3;3 7 4 0\n"
+        "pinched\t0 1 2 3;4 7 0 5;0 4 5 1;1 5 0 2;2 0 7 3;3 7 4 0\n"
+    )
+    rows = classify(next(read_dataset(str(path), format="loops"))).to_pylist()
+    assert [r["status"] for r in rows] == ["ok", "invalid"]
+    assert rows[1]["error"].startswith(f"{path}:2: not a sphere: corners - edges + faces = 1")
+
+
 def test_unreadable_voro_line_is_an_invalid_row(tmp_path):
     path = tmp_path / "cells.voro"
     path.write_text("1 0.5 (0,1,2) (0,2,3) (0,3,1) (1,3,2)\n2 x (0,1,2)\n")

@@ -13,6 +13,7 @@ from grainclass._numba import njit
 # Flags per grain.
 BAD_CORNER = 1  # a corner not on exactly three faces
 OPEN = 2  # an edge not on exactly two faces: the loops do not close into a surface
+PINCHED = 4  # a closed surface, but not a sphere: V - E + F is not 2
 
 
 @njit
@@ -108,7 +109,12 @@ def _adjacency_from_loops(
 ):
     """:func:`_grain_adjacency` for every grain g (faces ``face_offsets[g]:face_offsets[g+1]``),
     its corner ids (any integers) numbered 0..k-1 first. ``bad`` is int64[G, 3] (corner ids of
-    a bad edge and the faces on it); ``neighbors`` has room for one entry per loop corner."""
+    a bad edge and the faces on it, or for PINCHED (0, 0, V - E + F)); ``neighbors`` has room
+    for one entry per loop corner.
+
+    A closed surface whose V - E + F is not 2 is flagged PINCHED: two corners given one id (the
+    surface touches itself there) leave a face adjacency that can pass for a simple grain's,
+    and a grain with a handle is no polytope either."""
     size = 16
     tables = _tables(size)
     local = np.empty(loop_corners.shape[0], np.int64)
@@ -133,5 +139,10 @@ def _adjacency_from_loops(
                 loop_corners[where[1]],
                 where[2],
             )
+        elif f1 > f0:  # every edge on two loops: E is half the loops' corners
+            euler = ids.shape[0] - (b - a) // 2 + (f1 - f0)
+            if euler != 2:
+                flags[g] |= PINCHED
+                bad[g, 0], bad[g, 1], bad[g, 2] = 0, 0, euler
         _clear(f0, f1, loop_offsets, local, size, tables)
     return m

@@ -32,7 +32,7 @@ def batch_from_loops(
 
     The face adjacency is built by a compiled kernel (``_kernels/loops.py``); a grain whose
     loops do not close into a surface (an edge not on exactly two faces) becomes an invalid
-    row that names the edge.
+    row that names the edge, and so does one whose surface is not a sphere (V - E + F != 2).
 
     Examples
     --------
@@ -137,7 +137,7 @@ class _Rows:
     ) -> GrainBatch:
         """The batch, with each grain's ``face_counts[g]`` loops, loop k being
         ``corners[loop_offsets[k]:loop_offsets[k + 1]]`` (0 loops for a row with an error)."""
-        from grainclass._kernels.loops import OPEN, _adjacency_from_loops
+        from grainclass._kernels.loops import OPEN, PINCHED, _adjacency_from_loops
 
         face_offsets = offsets_from_counts(face_counts)
         n_loops = len(loop_offsets) - 1
@@ -149,15 +149,20 @@ class _Rows:
             face_offsets, loop_offsets, corners, nbr_offsets, neighbors, flags, bad
         )
         neighbors = neighbors[: nbr_offsets[-1]]
-        open_surface = (flags & OPEN) != 0
-        if open_surface.any():  # such grains keep their row, without faces
-            for g in np.flatnonzero(open_surface):
+        not_sphere = (flags & (OPEN | PINCHED)) != 0
+        if not_sphere.any():  # such grains keep their row, without faces
+            for g in np.flatnonzero(not_sphere):
                 u, v, count = bad[g]
-                self.errors[int(g)] = f"not a closed surface: edge {u}-{v} lies on {count} face(s)"
-            kept_faces = np.flatnonzero(np.repeat(~open_surface, face_counts))
+                self.errors[int(g)] = (
+                    f"not a closed surface: edge {u}-{v} lies on {count} face(s)"
+                    if flags[g] & OPEN
+                    else f"not a sphere: corners - edges + faces = {count}, not 2 (two corners "
+                    "with one id, where the surface touches itself, or a handle)"
+                )
+            kept_faces = np.flatnonzero(np.repeat(~not_sphere, face_counts))
             nbr_counts = np.diff(nbr_offsets)[kept_faces]
             neighbors = neighbors[run_indices(nbr_offsets[:-1][kept_faces], nbr_counts)]
-            face_offsets = offsets_from_counts(np.where(open_surface, 0, face_counts))
+            face_offsets = offsets_from_counts(np.where(not_sphere, 0, face_counts))
             nbr_offsets = offsets_from_counts(nbr_counts)
         return GrainBatch(
             source=self.source,
