@@ -98,6 +98,22 @@ def test_corner_of_four_faces_is_non_simple():
     assert row["volume"] == pytest.approx(want["volume"], rel=1e-8)
 
 
+def test_body_whose_surface_touches_itself_is_not_a_grain(tmp_path):
+    """The first cube of two_cubes.fe with its opposite corners 1 and 6 made one vertex: every
+    edge still lies on two facets and the faces touch as a cube's do, but the surface is pinched
+    at vertex 1 (V - E + F = 7 - 12 + 6 = 1)."""
+    text = (DATA / "two_cubes.fe").read_text()
+    head, _ = text.split("\nbodies\n")
+    for edge, pinched in (("5\t5\t6", "5\t5\t1"), ("6\t6\t7", "6\t1\t7"), ("12\t6\t3", "12\t1\t3")):
+        assert edge in head
+        head = head.replace(edge, pinched)
+    path = tmp_path / "pinched.fe"
+    path.write_text(head + "\nbodies\n1\t1 2 3 4 5 6\n")
+    (row,) = _rows(path)
+    assert row["status"] == "invalid"
+    assert "not a sphere: the surface of body 1 has vertices - edges + facets = 1" in row["error"]
+
+
 def test_body_touching_its_own_periodic_image_is_reported(tmp_path):
     # Two bodies sharing facet 1 become one body using it twice.
     text = (DATA / "two_cubes.fe").read_text()

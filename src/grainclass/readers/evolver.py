@@ -203,6 +203,15 @@ def _grain(data: _Datafile, body: int, facet_bodies: dict[int, list[int]], marke
             raise GrainError(
                 f"not a closed surface: edge {e} lies on {len(ks)} facet(s) of body {body}"
             )
+    # Every edge on two facets: the surface closes. A sphere's has V - E + F = 2; one vertex
+    # where the surface touches itself would leave a face adjacency that passes for a grain's.
+    vertices = {tail for darts in facets for tail, _, _ in darts}
+    euler = len(vertices) - len(on_edge) + len(facets)
+    if euler != 2:
+        raise GrainError(
+            f"not a sphere: the surface of body {body} has vertices - edges + facets = {euler}, "
+            "not 2 (a vertex where it touches itself, or a handle)"
+        )
     other = [tuple(b for b in facet_bodies[abs(f)] if b != body) for f in signed_facets]
     parent = list(range(len(facets)))
 
