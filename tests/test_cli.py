@@ -421,3 +421,90 @@ def test_summarize_round_rows_for_n_given_twice_come_once(runner):
     result = runner.invoke(cli, [*args, "--n", "6", "--n", "12", "--n", "6"])
     assert result.exit_code == 0, result.output
     assert [line.split(",")[0] for line in result.stdout.splitlines()[1:]] == ["all", "n=6", "n=12"]
+
+
+def test_sigterm_and_sighup_leave_no_file_and_exit_128_plus_the_signal(tmp_path):
+    """A run stopped by ``timeout`` or a closed terminal cleans up as Ctrl-C does. The input is
+    a pipe that stays open, so the run is still reading when the signal comes."""
+    import os
+    import signal
+    import time
+
+    for signum in (signal.SIGTERM, signal.SIGHUP):
+        out = tmp_path / "out.parquet"
+        run = subprocess.Popen(
+            [sys.executable, "-m", "grainclass", "classify", "-", "-o", str(out), "-q"],
+            stdin=subprocess.PIPE,
+            stderr=subprocess.PIPE,
+        )
+        run.stdin.write(CUBE_LINE.encode() * 1000)
+        run.stdin.flush()
+        deadline = time.monotonic() + 60
+        while not any(p.name.endswith(".tmp") for p in tmp_path.iterdir()):
+            assert time.monotonic() < deadline and run.poll() is None
+            time.sleep(0.05)
+        os.kill(run.pid, signum)
+        _, err = run.communicate(timeout=60)
+        assert run.returncode == 128 + signum
+        assert f"stopped by {signal.Signals(signum).name}" in err.decode()
+        assert list(tmp_path.iterdir()) == []
+
+
+def test_output_through_a_symbolic_link_replaces_its_file_and_keeps_its_permissions(
+    runner, tmp_path
+):
+    target = tmp_path / "summary.txt"
+    target.write_text("old")
+    target.chmod(0o600)
+    link = tmp_path / "link.txt"
+    link.symlink_to(target.name)
+    result = runner.invoke(cli, ["summarize", str(EXAMPLES / "polytopes.txt"), "-o", str(link)])
+    assert result.exit_code == 0, result.output
+    assert link.is_symlink()
+    assert target.read_text().startswith("grains: 13 ")
+    assert target.stat().st_mode & 0o777 == 0o600
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["link.txt", "summary.txt"]
+
+
+def test_output_to_a_fifo_is_written_through_not_replaced(runner, tmp_path):
+    """Renaming a finished file over a FIFO (or a device such as /dev/null) would replace it."""
+    import os
+    import threading
+
+    fifo = tmp_path / "fifo"
+    os.mkfifo(fifo)
+    received = []
+    # A daemon: a FIFO replaced by a file would leave it waiting for a writer for ever.
+    reader = threading.Thread(target=lambda: received.append(fifo.read_bytes()), daemon=True)
+    reader.start()
+    result = runner.invoke(cli, ["summarize", str(EXAMPLES / "polytopes.txt"), "-o", str(fifo)])
+    reader.join(timeout=60)
+    assert result.exit_code == 0, result.output
+    assert fifo.is_fifo()
+    assert received[0].startswith(b"grains: 13 ")
+    assert [p.name for p in tmp_path.iterdir()] == ["fifo"]
+
+
+@pytest.mark.parametrize("command", [["summarize"], ["types"], ["classify", "-o", "-"]])
+def test_a_full_standard_output_is_one_line_and_exit_1(command):
+    with open("/dev/full", "wb") as full:
+        result = subprocess.run(
+            [sys.executable, "-m", "grainclass", *command, str(EXAMPLES / "polytopes.txt"), "-q"],
+            stdout=full,
+            stderr=subprocess.PIPE,
+        )
+    assert result.returncode == 1
+    assert result.stderr.decode() == (
+        "Error: standard output: cannot write here (No space left on device)\n"
+    )
+
+
+@pytest.mark.parametrize("command", ["summarize", "types"])
+def test_an_output_that_cannot_be_written_fails_before_the_work(runner, tmp_path, command):
+    """The output is opened first: the message is about it, not about the missing input."""
+    result = runner.invoke(
+        cli, [command, str(tmp_path / "missing.txt"), "-o", str(tmp_path / "no" / "out.txt")]
+    )
+    assert result.exit_code == 1
+    assert f"{tmp_path / 'no' / 'out.txt'}: cannot write here" in result.stderr
+    assert "missing.txt" not in result.stderr

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+import stat
 import sys
 import tempfile
 from collections.abc import Iterator
@@ -17,32 +18,60 @@ def atomic_output(path: str, binary_stdout_ok: bool = True) -> Iterator[BinaryIO
     """A binary stream for ``path``: written to a temporary file beside it and renamed when the
     block ends without an error, removed otherwise. ``-`` is standard output (written as it
     goes; ``binary_stdout_ok=False`` refuses it when that is a terminal).
+
+    A symbolic link is followed: the file it names is replaced, the link stays. A path that
+    names something other than a file (``/dev/null``, a FIFO) is written through as it goes,
+    as a shell's redirection would: renaming over it would replace the device or the pipe.
+    Replacing a file keeps its permissions. An OSError in the block becomes an OutputError,
+    except a BrokenPipeError (the reader went away), which callers end quietly on.
     """
     if path == "-":
         if not binary_stdout_ok and sys.stdout.isatty():
             raise OutputError("refusing to write binary output to a terminal; use -o FILE")
-        yield sys.stdout.buffer
-        sys.stdout.buffer.flush()
+        with _as_output_error("standard output"):
+            yield sys.stdout.buffer
+            sys.stdout.buffer.flush()
         return
-    directory = os.path.dirname(os.path.abspath(path))
+    target = os.path.realpath(path)
+    try:
+        mode = os.stat(target).st_mode
+    except OSError:
+        mode = None
+    if mode is not None and not stat.S_ISREG(mode):
+        with _as_output_error(path), open(target, "wb") as sink:
+            yield sink
+        return
     try:
         fd, tmp = tempfile.mkstemp(
-            prefix=f".{os.path.basename(path)}.", suffix=".tmp", dir=directory
+            prefix=f".{os.path.basename(target)}.", suffix=".tmp", dir=os.path.dirname(target)
         )
     except OSError as exc:
         raise OutputError(f"{path}: cannot write here ({exc.strerror})") from None
     try:
-        with os.fdopen(fd, "wb") as sink:
-            yield sink
-        # mkstemp makes the file private; give it the permissions open() would.
-        umask = os.umask(0)
-        os.umask(umask)
-        os.chmod(tmp, 0o666 & ~umask)
-        os.replace(tmp, path)
-    except BaseException as exc:
+        with _as_output_error(path):
+            with os.fdopen(fd, "wb") as sink:
+                yield sink
+            # mkstemp makes the file private: give it the permissions of the file it replaces,
+            # or those open() would.
+            if mode is None:
+                umask = os.umask(0)
+                os.umask(umask)
+                mode = 0o666 & ~umask
+            os.chmod(tmp, stat.S_IMODE(mode))
+            os.replace(tmp, target)
+    except BaseException:
         os.unlink(tmp)
-        # The readers report their own system errors as InputError: one here is the output's
-        # (a full disk, or a path that names a folder).
-        if isinstance(exc, OSError):
-            raise OutputError(f"{path}: cannot write here ({exc.strerror or exc})") from None
         raise
+
+
+@contextmanager
+def _as_output_error(name: str) -> Iterator[None]:
+    """OSError in the block as an OutputError naming ``name``. The readers report their own
+    system errors as InputError: one here is the output's (a full disk, a path that names a
+    folder)."""
+    try:
+        yield
+    except BrokenPipeError:
+        raise
+    except OSError as exc:
+        raise OutputError(f"{name}: cannot write here ({exc.strerror or exc})") from None

@@ -7,10 +7,12 @@ from __future__ import annotations
 
 import gc
 import os
+import signal
 import sys
 import warnings
 from collections.abc import Iterable, Iterator
-from typing import TypeVar
+from contextlib import contextmanager, nullcontext
+from typing import BinaryIO, TypeVar
 
 import click
 
@@ -26,30 +28,44 @@ from grainclass.vocabulary import (
 
 T = TypeVar("T")
 
-EXIT_CODES = """\b
+INTERRUPTED = "  130  interrupted: Ctrl-C (129, 143: SIGHUP, SIGTERM); "
+
+EXIT_CODES = f"""\b
 Exit codes:
   0    success (bad grains are data: they get a row with their status)
   1    an input or output could not be read or written; with --strict, bad grains
   2    usage error
-  130  interrupted (no partial output file is left behind)
+{INTERRUPTED}no partial output
+       file is left behind
 """
 
-VORONOI_EXIT_CODES = """\b
+SUMMARY_EXIT_CODES = f"""\b
+Exit codes:
+  0    success (bad grains are data, not errors)
+  1    an input or output could not be read or written
+  2    usage error
+{INTERRUPTED}no partial output
+       file is left behind
+"""
+
+VORONOI_EXIT_CODES = f"""\b
 Exit codes:
   0    success
   1    the tessellation failed (seeds Voro++ cannot separate) or its checks (then the
        output is written, for a look), or the output could not be written
   2    usage error
-  130  interrupted (no partial output file is left behind)
+{INTERRUPTED}no partial output
+       file is left behind
 """
 
-CENSUS_EXIT_CODES = """\b
+CENSUS_EXIT_CODES = f"""\b
 Exit codes:
   0    every part done, every cross-check passed
   1    a part failed (the others are kept), the census disagrees with plantri,
        or an output could not be written
   2    usage error
-  130  interrupted (finished parts are kept: the same command resumes)
+{INTERRUPTED}finished parts are
+       kept: the same command resumes
 """
 
 
@@ -193,6 +209,8 @@ def classify_cmd(
     from grainclass.parquet import GrainTableWriter
     from grainclass.pipeline import classified_tables
 
+    if output == "-" and sys.stdout.isatty():
+        raise click.UsageError("refusing to write Parquet to a terminal; use -o FILE")
     _set_jobs(jobs)
     fmt = None if input_format == "auto" else input_format
     counts: dict[str, int] = {}
@@ -210,8 +228,8 @@ def classify_cmd(
         _quiet_broken_pipe()
     if writer.dropped:
         click.echo(
-            "warning: attributes first seen after the first chunk were not written: "
-            + ", ".join(sorted(writer.dropped)),
+            f"grainclass: warning: {output}: attributes that no grain of the first chunk had "
+            f"are not written: {', '.join(sorted(writer.dropped))}",
             err=True,
         )
     bad = sum(count for status, count in counts.items() if status != "ok")
@@ -222,7 +240,7 @@ def classify_cmd(
         raise click.ClickException(f"{bad} grain(s) are not simple polytopes (--strict)")
 
 
-@cli.command("summarize", epilog=EXIT_CODES)
+@cli.command("summarize", epilog=SUMMARY_EXIT_CODES)
 @click.argument("grains", nargs=-1, required=True, metavar="GRAINS...")
 @click.option(
     "--table",
@@ -281,17 +299,20 @@ def summarize_cmd(
         raise click.UsageError("refusing to write Parquet to a terminal; use -o FILE")
     _set_jobs(jobs)
     in_fmt = None if input_format == "auto" else input_format
-    try:
-        stream = tallies(list(grains), in_fmt, chunk_size, triple_edges, types, include_boundary)
-        summary = summarize(
-            _progress(quiet).wrap(_after_start_up(stream)), n_values, include_boundary
-        )
-    except GrainclassError as exc:
-        raise click.ClickException(str(exc)) from None
-    _write(output, _as_bytes(render(summary, tables, fmt)))
+    with _output(output) as sink:
+        try:
+            stream = tallies(
+                list(grains), in_fmt, chunk_size, triple_edges, types, include_boundary
+            )
+            summary = summarize(
+                _progress(quiet).wrap(_after_start_up(stream)), n_values, include_boundary
+            )
+        except GrainclassError as exc:
+            raise click.ClickException(str(exc)) from None
+        sink.write(_as_bytes(render(summary, tables, fmt)))
 
 
-@cli.command("types", epilog=EXIT_CODES)
+@cli.command("types", epilog=SUMMARY_EXIT_CODES)
 @click.argument("grains", nargs=-1, required=True, metavar="GRAINS...")
 @click.option("--top", type=click.IntRange(min=1), help="Only the K most frequent types.")
 @click.option("--n", "n_faces", type=click.IntRange(min=4), help="Only grains with N faces.")
@@ -340,18 +361,20 @@ def types_cmd(
         raise click.UsageError("refusing to write Parquet to a terminal; use -o FILE")
     _set_jobs(jobs)
     in_fmt = None if input_format == "auto" else input_format
-    try:
-        stream = grain_tables(list(grains), COLUMNS, in_fmt, chunk_size, triple_edges)
-        table = type_frequencies(
-            _progress(quiet).wrap(_after_start_up(stream)), n_faces, class_name
-        )
-    except GrainclassError as exc:
-        raise click.ClickException(str(exc)) from None
-    if vorotop:
-        _write(vorotop, vorotop_distribution(table).encode())
-    shown = table.head(top) if top else table
-    shown = shown.drop(columns=["left", "achiral", "right"])
-    _write(output, _as_bytes(render_frame(shown, fmt, f"{len(table)} types, most frequent first")))
+    with _output(output) as sink, _output(vorotop) if vorotop else nullcontext() as distribution:
+        try:
+            stream = grain_tables(list(grains), COLUMNS, in_fmt, chunk_size, triple_edges)
+            table = type_frequencies(
+                _progress(quiet).wrap(_after_start_up(stream)), n_faces, class_name
+            )
+        except GrainclassError as exc:
+            raise click.ClickException(str(exc)) from None
+        if distribution is not None:
+            distribution.write(vorotop_distribution(table).encode())
+        shown = table.head(top) if top else table
+        shown = shown.drop(columns=["left", "achiral", "right"])
+        title = f"{len(table)} types, most frequent first"
+        sink.write(_as_bytes(render_frame(shown, fmt, title)))
 
 
 @cli.command("voronoi", epilog=VORONOI_EXIT_CODES)
@@ -534,7 +557,8 @@ def _report_census(result, output: str) -> None:
             f"{len(result.failures)} task(s) failed; finished parts are kept in {output}: "
             "run the same command again to retry the rest"
         )
-    _write("-", _as_bytes(render(result.summary, ("classes", "split"), "text")))
+    with _output("-") as sink:
+        sink.write(_as_bytes(render(result.summary, ("classes", "split"), "text")))
     click.echo("Cross-checks against plantri's own counts")
     for check in result.checks:
         verdict = "ok" if check.ok else "MISMATCH"
@@ -550,15 +574,17 @@ def _as_bytes(rendered: str | bytes) -> bytes:
     return rendered.encode() if isinstance(rendered, str) else rendered
 
 
-def _write(output: str, data: bytes) -> None:
-    """Write to a file, whole or not at all, or, for ``-``, standard output; a closed pipe
-    ends quietly."""
+@contextmanager
+def _output(path: str) -> Iterator[BinaryIO]:
+    """The output ``path`` (``-``: standard output), opened now, so that a path that cannot
+    be written fails before the work, not after it; written whole or not at all (see
+    :func:`grainclass.atomic.atomic_output`). A closed pipe ends quietly."""
     from grainclass.atomic import atomic_output
     from grainclass.errors import OutputError
 
     try:
-        with atomic_output(output) as sink:
-            sink.write(data)
+        with atomic_output(path) as sink:
+            yield sink
     except BrokenPipeError:
         _quiet_broken_pipe()
     except OutputError as exc:
@@ -577,8 +603,22 @@ def _show_warning(message, category, filename, lineno, file=None, line=None) -> 
     click.echo(f"grainclass: warning: {message}", err=True)
 
 
+class _Stopped(BaseException):
+    """SIGTERM or SIGHUP, raised like Ctrl-C's KeyboardInterrupt, so that what a command has
+    begun (a temporary output file) is undone on the way out."""
+
+    def __init__(self, signum: int) -> None:
+        super().__init__(signum)
+        self.signum = signum
+
+
+def _stop(signum: int, frame: object) -> None:
+    raise _Stopped(signum)
+
+
 def main() -> None:
-    """Entry point: click's handling, except that Ctrl-C exits 130 as shells expect."""
+    """Entry point: click's handling, except that Ctrl-C exits 130 as shells expect, and
+    SIGTERM and SIGHUP (``timeout``, a batch scheduler, a closed terminal) 143 and 129."""
     # Readers build millions of short-lived lists (freed by reference counting, not in
     # cycles); at the default thresholds the cyclic collector's passes over them and over the
     # imported libraries took half of the time of reading face-loop text. It still runs, less
@@ -592,6 +632,9 @@ def main() -> None:
     # grainclass multiplies none large enough to use them.
     os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
     warnings.showwarning = _show_warning
+    for name in ("SIGTERM", "SIGHUP"):  # not on Windows
+        if hasattr(signal, name):
+            signal.signal(getattr(signal, name), _stop)
     try:
         code = cli.main(standalone_mode=False)
     except click.ClickException as exc:
@@ -600,4 +643,7 @@ def main() -> None:
     except (click.Abort, KeyboardInterrupt):
         click.echo("grainclass: interrupted", err=True)
         sys.exit(130)
+    except _Stopped as stop:
+        click.echo(f"grainclass: stopped by {signal.Signals(stop.signum).name}", err=True)
+        sys.exit(128 + stop.signum)
     sys.exit(code if isinstance(code, int) else 0)
