@@ -441,7 +441,8 @@ def test_sigterm_and_sighup_leave_no_file_and_exit_128_plus_the_signal(tmp_path)
         run.stdin.flush()
         deadline = time.monotonic() + 60
         while not any(p.name.endswith(".tmp") for p in tmp_path.iterdir()):
-            assert time.monotonic() < deadline and run.poll() is None
+            assert time.monotonic() < deadline
+            assert run.poll() is None
             time.sleep(0.05)
         os.kill(run.pid, signum)
         _, err = run.communicate(timeout=60)
