@@ -509,3 +509,22 @@ def test_an_output_that_cannot_be_written_fails_before_the_work(runner, tmp_path
     assert result.exit_code == 1
     assert f"{tmp_path / 'no' / 'out.txt'}: cannot write here" in result.stderr
     assert "missing.txt" not in result.stderr
+
+
+def test_a_parquet_table_or_a_compressed_file_is_named_not_misread(runner, tmp_path):
+    """Both hold 0 bytes, which would make them planar_code: garbage rows and exit 0."""
+    import gzip
+
+    result, table = _classify(runner, tmp_path, EXAMPLES / "polytopes.txt")
+    assert result.exit_code == 0
+    packed = tmp_path / "polytopes.txt.gz"
+    packed.write_bytes(gzip.compress((EXAMPLES / "polytopes.txt").read_bytes()))
+    for path, why in ((table, "a Parquet table, not grains"), (packed, "gzip-compressed")):
+        out = tmp_path / "again.parquet"
+        result = runner.invoke(cli, ["classify", str(path), "-o", str(out)])
+        assert result.exit_code == 1
+        assert f"{path}: {why}" in result.stderr
+        assert not out.exists()
+    result = runner.invoke(cli, ["summarize", "-"], input=packed.read_bytes())
+    assert result.exit_code == 1
+    assert "-: gzip-compressed: decompress it first" in result.stderr

@@ -29,6 +29,16 @@ from grainclass.vocabulary import INPUT_FORMATS
 
 _EVOLVER = re.compile(rb"(?im)^\s*(vertices|torus_filled|torus|periods)\s*(//.*)?$")
 
+# Files that hold no grains a reader could take, by their first bytes: named, not misread (their
+# 0 bytes would make them planar_code).
+_NOT_GRAINS = {
+    b"PAR1": "a Parquet table, not grains: summarize and types read it, classify reads grains",
+    b"\x1f\x8b": "gzip-compressed: decompress it first (zcat FILE | grainclass ... -)",
+    b"BZh": "bzip2-compressed: decompress it first (bzcat FILE | grainclass ... -)",
+    b"\xfd7zXZ\x00": "xz-compressed: decompress it first (xzcat FILE | grainclass ... -)",
+    b"\x28\xb5\x2f\xfd": "zstd-compressed: decompress it first (zstdcat FILE | grainclass ... -)",
+}
+
 
 def sniff(head: bytes) -> str:
     """Name the format of an input from its first bytes.
@@ -45,7 +55,10 @@ def sniff(head: bytes) -> str:
     'voro'
 
     Face-vertex-loop text looks like adjacency text: it is read only with ``--format loops``.
+    A Parquet table or a compressed file is ``not grains``: :func:`read_dataset` says why.
     """
+    if _not_grains(head):
+        return "not grains"
     if head.startswith(b">>planar_code") or b"\x00" in head:
         return "planar_code"
     if _EVOLVER.search(head):
@@ -55,6 +68,11 @@ def sniff(head: bytes) -> str:
     if looks_like_neper(head):
         return "neper"
     return "adjacency"
+
+
+def _not_grains(head: bytes) -> str | None:
+    """What an input that holds no grains is, from its first bytes; None for anything else."""
+    return next((why for magic, why in _NOT_GRAINS.items() if head.startswith(magic)), None)
 
 
 def _sniff_path(path: str, format: str | None) -> str:
@@ -173,6 +191,8 @@ def read_dataset(
         k += 1
         with _open(path) as stream:
             fmt = formats[k - 1] or sniff(stream.peek(4096)[:4096])
+            if fmt == "not grains":
+                raise InputError(path, _not_grains(stream.peek(8)) or "not grains")
             if fmt == "evolver":
                 raise InputError(path, "Surface Evolver input must be a file or a folder")
             if fmt == "planar_code":
