@@ -82,6 +82,8 @@ def test_classify_missing_input_exits_1_and_leaves_no_file(runner, tmp_path):
         ["classify", "-o", "x.parquet"],  # no input
         ["classify", "x.txt", "-o", "y", "--format", "xml"],
         ["classify", "x.txt", "-o", "y", "--chunk-size", "0"],
+        ["classify", "x.txt", "-o", "y", "--chunk-size", "100000000000"],
+        ["voronoi", "10", "--seed", "-5", "-o", "y"],
         ["summarize", "x.parquet", "--table", "nope"],
         ["summarize", "x.parquet", "--n", "3"],
         ["frobnicate"],

@@ -28,6 +28,9 @@ from grainclass.vocabulary import (
 
 T = TypeVar("T")
 
+# Readers size their arrays for a whole chunk at once: a typo's 10**11 asked for 745 GB.
+MAX_CHUNK_SIZE = 10_000_000
+
 INTERRUPTED = "  130  interrupted: Ctrl-C (129, 143: SIGHUP, SIGTERM); "
 
 EXIT_CODES = f"""\b
@@ -112,7 +115,7 @@ def _input_options(*format_flags: str, types: bool | None = True):
         ),
         click.option(
             "--chunk-size",
-            type=click.IntRange(min=1),
+            type=click.IntRange(min=1, max=MAX_CHUNK_SIZE),
             default=DEFAULT_CHUNK_SIZE,
             show_default=True,
             help="Grains per batch (and per Parquet row group).",
@@ -379,7 +382,11 @@ def types_cmd(
 
 @cli.command("voronoi", epilog=VORONOI_EXIT_CODES)
 @click.argument("n_seeds", type=click.IntRange(min=1), metavar="N")
-@click.option("--seed", type=int, help="Random seed: the same seed gives the same grains.")
+@click.option(
+    "--seed",
+    type=click.IntRange(min=0),
+    help="Random seed: the same seed gives the same grains.",
+)
 @click.option(
     "--box",
     type=click.FloatRange(min=0, min_open=True),
@@ -491,7 +498,7 @@ def _vertex_counts(
 )
 @click.option(
     "--chunk-size",
-    type=click.IntRange(min=1),
+    type=click.IntRange(min=1, max=MAX_CHUNK_SIZE),
     default=DEFAULT_CHUNK_SIZE,
     show_default=True,
     help="Triangulations per batch inside a task.",
