@@ -530,3 +530,19 @@ def test_a_parquet_table_or_a_compressed_file_is_named_not_misread(runner, tmp_p
     result = runner.invoke(cli, ["summarize", "-"], input=packed.read_bytes())
     assert result.exit_code == 1
     assert "-: gzip-compressed: decompress it first" in result.stderr
+
+
+def test_a_reader_that_goes_away_mid_output_ends_types_quietly_with_exit_1(plantri_output):
+    """1.9 MB of types into a pipe whose reader takes one line: the write that the closed pipe
+    cuts short reports only a count, which must not pass for success."""
+    run = subprocess.Popen(
+        [sys.executable, "-m", "grainclass", "types", str(plantri_output(12)), "-q"],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+    )
+    assert run.stdout.readline().startswith(b"7595 types")
+    run.stdout.close()
+    with run.stderr:
+        err = run.stderr.read()
+    assert run.wait(timeout=120) == 1
+    assert err == b""

@@ -312,7 +312,7 @@ def summarize_cmd(
             )
         except GrainclassError as exc:
             raise click.ClickException(str(exc)) from None
-        sink.write(_as_bytes(render(summary, tables, fmt)))
+        _write_all(sink, render(summary, tables, fmt))
 
 
 @cli.command("types", epilog=SUMMARY_EXIT_CODES)
@@ -373,11 +373,11 @@ def types_cmd(
         except GrainclassError as exc:
             raise click.ClickException(str(exc)) from None
         if distribution is not None:
-            distribution.write(vorotop_distribution(table).encode())
+            _write_all(distribution, vorotop_distribution(table))
         shown = table.head(top) if top else table
         shown = shown.drop(columns=["left", "achiral", "right"])
         title = f"{len(table)} types, most frequent first"
-        sink.write(_as_bytes(render_frame(shown, fmt, title)))
+        _write_all(sink, render_frame(shown, fmt, title))
 
 
 @cli.command("voronoi", epilog=VORONOI_EXIT_CODES)
@@ -433,7 +433,7 @@ def voronoi_cmd(n_seeds: int, seed: int | None, box: float, output: str, quiet: 
 
             with atomic_output(output) as sink:
                 for batch in batches:
-                    sink.write("".join(adjacency_lines(batch)).encode())
+                    _write_all(sink, "".join(adjacency_lines(batch)))
     except GrainclassError as exc:
         raise click.ClickException(str(exc)) from None
     except BrokenPipeError:
@@ -565,7 +565,7 @@ def _report_census(result, output: str) -> None:
             "run the same command again to retry the rest"
         )
     with _output("-") as sink:
-        sink.write(_as_bytes(render(result.summary, ("classes", "split"), "text")))
+        _write_all(sink, render(result.summary, ("classes", "split"), "text"))
     click.echo("Cross-checks against plantri's own counts")
     for check in result.checks:
         verdict = "ok" if check.ok else "MISMATCH"
@@ -577,8 +577,12 @@ def _report_census(result, output: str) -> None:
     click.echo(f"tables and provenance written to {output}", err=True)
 
 
-def _as_bytes(rendered: str | bytes) -> bytes:
-    return rendered.encode() if isinstance(rendered, str) else rendered
+def _write_all(sink: BinaryIO, data: str | bytes) -> None:
+    """Write all of ``data``: a pipe whose reader goes away mid-write takes part of it and
+    says so only in the count, and the next write raises BrokenPipeError."""
+    view = memoryview(data.encode() if isinstance(data, str) else data)
+    while view:
+        view = view[sink.write(view) :]
 
 
 @contextmanager
