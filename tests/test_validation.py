@@ -121,6 +121,21 @@ def test_planar_code_two_byte_entries_in_both_byte_orders(tmp_path, header, big_
     ]
 
 
+@pytest.mark.parametrize("chunk_size", [1, 5, 100_000])
+def test_planar_code_streams_one_after_another_read_as_one(plantri_output, tmp_path, chunk_size):
+    """`cat a.pc b.pc`, `(plantri 7; plantri 8) | ...`: the second header is read as a header,
+    also one that changes the byte order, and the records are numbered on across it."""
+    sevens, eights = plantri_output(7).read_bytes(), plantri_output(8).read_bytes()
+    wide = b">>planar_code be<<" + _planar_code_wide(CUBE, big_endian=True)
+    path = tmp_path / "both.pc"
+    path.write_bytes(sevens + eights + wide + b">>planar_code<<")
+    rows = _table(path, chunk_size=chunk_size).to_pylist()
+    assert [r["n_faces"] for r in rows] == [7] * 5 + [8] * 14 + [6]
+    assert all(r["status"] == "ok" for r in rows)
+    assert [r["grain_id"] for r in rows] == [str(k) for k in range(1, 21)]
+    assert rows[-1]["penalty"] == 18
+
+
 def test_planar_code_without_header_is_sniffed(plantri_output, tmp_path):
     data = plantri_output(7).read_bytes()[len(b">>planar_code<<") :]
     assert sniff(data[:64]) == "planar_code"

@@ -5,7 +5,11 @@ rotational order) and a 0. Counts below 256 use 1-byte entries; otherwise the re
 a 0 byte and every entry, n included, is 2 bytes in the stream's byte order.
 """
 
+import numpy as np
+
 from grainclass._numba import at, njit
+
+_HEADER = np.frombuffer(b">>planar_code", np.uint8)
 
 
 @njit
@@ -16,6 +20,26 @@ def _entry(buf, p, wide, big_endian):
     if big_endian:
         return int(buf[p]) * 256 + int(buf[p + 1])
     return int(buf[p]) + int(buf[p + 1]) * 256
+
+
+@njit
+def header_length(buf, p):
+    """The length of a planar_code header (``>>planar_code<<``, ``... le<<``, ``... be<<``) at
+    ``buf[p]``, or 0. Streams written one after another (``cat a.pc b.pc``) have one in the
+    middle, where a record would start; no record can start so: n would be 62 ('>') and its
+    first list hold 112 ('p')."""
+    size = buf.shape[0]
+    if p + 15 > size:
+        return 0
+    for i in range(13):
+        if buf[p + i] != _HEADER[i]:
+            return 0
+    if buf[p + 13] == 60 and buf[p + 14] == 60:  # "<<"
+        return 15
+    if p + 18 > size or buf[p + 13] != 32 or buf[p + 16] != 60 or buf[p + 17] != 60:
+        return 0
+    endian = (buf[p + 14], buf[p + 15])
+    return 18 if endian == (108, 101) or endian == (98, 101) else 0  # "le", "be"
 
 
 @njit(inline="always")
@@ -36,12 +60,15 @@ def _scan(buf, big_endian, max_records, starts):
 
     Returns ``(records, vertices, entries, consumed)``: entries counts neighbours, and
     ``consumed`` is the number of bytes of complete records (a cut-off record is left unread).
+    The scan stops before a header (:func:`header_length`): the caller reads it.
     """
     size = buf.shape[0]
     p = 0
     records = vertices = entries = 0
     starts[0] = 0
     while p < size and records < max_records:
+        if buf[p] == 62 and header_length(buf, p):
+            break
         wide = buf[p] == 0
         width = 2 if wide else 1
         q = p + 1 if wide else p

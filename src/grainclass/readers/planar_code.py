@@ -53,14 +53,6 @@ class PlanarCodeRecords:
         return dataclasses.replace(batch, grain_id=decimal_strings(position), location=position)
 
 
-def _read_header(stream: BinaryIO, head: bytes) -> tuple[bool, bytes]:
-    """Strip an optional header; returns (big_endian, the bytes read past it)."""
-    for header, big_endian in HEADERS.items():
-        if head.startswith(header):
-            return big_endian, head[len(header) :]
-    return False, head
-
-
 def read_planar_code(
     stream: BinaryIO, source: str, chunk_size: int, raw: bool = False
 ) -> Iterator[GrainBatch | PlanarCodeRecords]:
@@ -83,13 +75,13 @@ def read_planar_code(
         Grain ids are the 1-based positions in the stream; a record cut off by the end of the
         input becomes an unreadable grain with its own row (a GrainBatch, also when ``raw``).
     """
-    from grainclass._kernels.planar_code import _fill, _scan
+    from grainclass._kernels.planar_code import _fill, _scan, header_length
     from grainclass.arrow import decimal_strings
 
-    big_endian, head = _read_header(stream, stream.read(32))
+    big_endian = False
     gather = gathers_reads(stream)
     buffers = _BufferPool()
-    buffer = np.frombuffer(head, np.uint8)  # bytes not yet parsed: buffer[pos:]
+    buffer = np.zeros(0, np.uint8)  # bytes not yet parsed: buffer[pos:]
     at_end, pos = False, 0
     last_chunk = BLOCK_BYTES  # bytes the last batch took
     record = 1
@@ -103,6 +95,11 @@ def read_planar_code(
         buf.flags.writeable = False  # the batches share it; one numba signature for all callers
         starts = np.empty(chunk_size + 1, np.int64)
         records, vertices, entries, consumed = _scan(buf, big_endian, chunk_size, starts)
+        if records == 0 and header_length(buf, 0):  # the stream's, or another's after it
+            header = header_length(buf, 0)
+            big_endian = HEADERS[buf[:header].tobytes()]
+            pos += header
+            continue
         if records == 0:
             if at_end:
                 if len(buf):
