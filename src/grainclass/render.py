@@ -109,8 +109,13 @@ def _latex(table: pd.DataFrame) -> str:
 
 
 def _records(table: pd.DataFrame) -> list[dict]:
-    """JSON-ready rows, floats kept to 15 digits (pandas rounds to 10 by default)."""
-    return json.loads(table.to_json(orient="records", double_precision=15))
+    """JSON-ready rows, floats kept to 15 digits (pandas rounds to 10 by default). A table
+    with a "total" row holds n as text: every other n is a number again."""
+    rows = json.loads(table.to_json(orient="records", double_precision=15))
+    for row in rows:
+        if isinstance(row.get("n"), str) and row["n"].isdigit():
+            row["n"] = int(row["n"])
+    return rows
 
 
 def render_frame(table: pd.DataFrame, fmt: str, title: str) -> str | bytes:
