@@ -552,3 +552,30 @@ def test_a_reader_that_goes_away_mid_output_ends_types_quietly_with_exit_1(plant
         err = run.stderr.read()
     assert run.wait(timeout=120) == 1
     assert err == b""
+
+
+@pytest.mark.parametrize(
+    "name", ["polytopes.txt", "evolver/two_cubes.fe", "voro"], ids=["adjacency", "evolver", "voro"]
+)
+def test_a_utf8_byte_order_mark_is_not_part_of_the_first_line(runner, tmp_path, name):
+    """Windows editors start UTF-8 text with one: it made line 1 an invalid grain (or hid the
+    format from sniffing), from a file and from standard input alike."""
+    from conftest import ROOT
+
+    if name == "voro":
+        text = b"1 0.5 (0,1,2) (0,2,3) (0,3,1) (1,3,2)\n"
+        suffix = ".txt"
+    else:
+        folder = EXAMPLES if name == "polytopes.txt" else ROOT / "tests" / "data"
+        text = (folder / name).read_bytes()
+        suffix = name[name.rindex(".") :]
+    plain, marked = tmp_path / f"plain{suffix}", tmp_path / f"marked{suffix}"
+    plain.write_bytes(text)
+    marked.write_bytes(b"\xef\xbb\xbf" + text)
+    args = ["summarize", "--format", "json", "-q"]
+    want = runner.invoke(cli, [*args, str(plain)])
+    assert want.exit_code == 0
+    assert json.loads(want.stdout)["headline"]["invalid"] == 0
+    assert runner.invoke(cli, [*args, str(marked)]).stdout == want.stdout
+    if name != "evolver/two_cubes.fe":  # Surface Evolver input must be a file
+        assert runner.invoke(cli, [*args, "-"], input=marked.read_bytes()).stdout == want.stdout

@@ -27,6 +27,7 @@ from grainclass.readers.planar_code import PlanarCodeRecords, read_planar_code
 from grainclass.readers.voro import looks_like_voro, read_voro
 from grainclass.vocabulary import INPUT_FORMATS
 
+_BOM = b"\xef\xbb\xbf"  # what some Windows editors put before UTF-8 text
 _EVOLVER = re.compile(rb"(?im)^\s*(vertices|torus_filled|torus|periods)\s*(//.*)?$")
 
 # Files that hold no grains a reader could take, by their first bytes: named, not misread (their
@@ -59,6 +60,7 @@ def sniff(head: bytes) -> str:
     """
     if _not_grains(head):
         return "not grains"
+    head = head.removeprefix(_BOM)
     if head.startswith(b">>planar_code") or b"\x00" in head:
         return "planar_code"
     if _EVOLVER.search(head):
@@ -193,6 +195,8 @@ def read_dataset(
             fmt = formats[k - 1] or sniff(stream.peek(4096)[:4096])
             if fmt == "not grains":
                 raise InputError(path, _not_grains(stream.peek(8)) or "not grains")
+            if fmt != "planar_code" and stream.peek(3)[:3] == _BOM:
+                stream.read(3)
             if fmt == "evolver":
                 raise InputError(path, "Surface Evolver input must be a file or a folder")
             if fmt == "planar_code":

@@ -403,7 +403,7 @@ def _read_file(path: str, triple_edges: tuple[str, str]) -> list[_Grain]:
     """The grains of one datafile (a malformed file is one bad grain, not a failed run)."""
     stem = path.rsplit("/", 1)[-1].removesuffix(".fe")
     try:
-        with open(path, encoding="utf-8", errors="replace") as handle:
+        with open(path, encoding="utf-8-sig", errors="replace") as handle:
             data = _parse(handle.read(), path, triple_edges)
     except OSError as exc:
         raise InputError(path, exc.strerror or str(exc)) from None
