@@ -579,3 +579,29 @@ def test_a_utf8_byte_order_mark_is_not_part_of_the_first_line(runner, tmp_path, 
     assert runner.invoke(cli, [*args, str(marked)]).stdout == want.stdout
     if name != "evolver/two_cubes.fe":  # Surface Evolver input must be a file
         assert runner.invoke(cli, [*args, "-"], input=marked.read_bytes()).stdout == want.stdout
+
+
+@pytest.mark.parametrize("command", ["classify", "summarize", "summarize-parquet"])
+def test_a_fifo_input_is_read_once_and_whole(runner, tmp_path, command):
+    """A FIFO (or `<(plantri 10)`) can be read only once: sniffing it by reading and reopening
+    lost the bytes read, or waited for ever for a writer that was gone."""
+    import os
+    import threading
+
+    data = (EXAMPLES / "plantri-10.pc").read_bytes()
+    if command == "summarize-parquet":
+        result, table = _classify(runner, tmp_path, EXAMPLES / "plantri-10.pc")
+        assert result.exit_code == 0
+        data = table.read_bytes()
+    fifo = tmp_path / "fifo"
+    os.mkfifo(fifo)
+    threading.Thread(target=fifo.write_bytes, args=(data,), daemon=True).start()
+    if command == "classify":
+        out = tmp_path / "out.parquet"
+        result = runner.invoke(cli, ["classify", str(fifo), "-o", str(out), "-q"])
+        assert result.exit_code == 0, result.output
+        assert pq.read_table(out).column("status").to_pylist() == ["ok"] * 233
+    else:
+        result = runner.invoke(cli, ["summarize", str(fifo), "-q"])
+        assert result.exit_code == 0, result.output
+        assert result.stdout.startswith("grains: 233 (ok 233, ")

@@ -87,13 +87,15 @@ class GrainTableWriter:
 def iter_grain_tables(path: str, columns: list[str]) -> Iterator[pa.Table]:
     """The columns of a per-grain Parquet file, one row group at a time (``-``: standard input).
 
-    Parquet keeps its index at the end, so standard input is read whole first.
+    Parquet keeps its index at the end, so standard input (a FIFO) is read whole first.
     """
     from grainclass.errors import InputError
-    from grainclass.readers import stdin
+    from grainclass.readers import done_reading, read_once
 
     try:
-        source = pa.BufferReader(stdin().read()) if path == "-" else path
+        once = read_once(path)
+        source = path if once is None else pa.BufferReader(once.read())
+        done_reading(path)
         parquet = pq.ParquetFile(source)
     except (OSError, pa.ArrowInvalid) as exc:
         raise InputError(path, f"not a grainclass Parquet table ({exc})") from None

@@ -19,7 +19,7 @@ import pyarrow as pa
 from grainclass import DEFAULT_CHUNK_SIZE
 from grainclass.classification import classify
 from grainclass.parallel import map_ordered
-from grainclass.readers import read_dataset, stdin
+from grainclass.readers import read_dataset, read_once
 from grainclass.readers.evolver import DEFAULT_TRIPLE_EDGES
 
 if TYPE_CHECKING:
@@ -88,9 +88,10 @@ def classified_tables(
 
 
 def is_parquet(path: str) -> bool:
-    """True for a Parquet file (or standard input holding one)."""
-    if path == "-":
-        return stdin().peek(4)[:4] == b"PAR1"
+    """True for a Parquet file (or standard input, a FIFO, holding one)."""
+    once = read_once(path)
+    if once is not None:
+        return once.peek(4)[:4] == b"PAR1"
     try:
         with open(path, "rb") as handle:
             return handle.read(4) == b"PAR1"

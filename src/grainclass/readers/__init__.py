@@ -9,6 +9,7 @@ from __future__ import annotations
 import io
 import os
 import re
+import stat
 import sys
 import warnings
 from collections.abc import Iterator, Sequence
@@ -82,7 +83,7 @@ def _sniff_path(path: str, format: str | None) -> str:
         return format
     if path != "-" and path.lower().endswith(".fe"):
         return "evolver"
-    if path == "-":
+    if read_once(path) is not None:
         return ""  # sniffed from the stream itself
     try:
         with open(path, "rb") as handle:
@@ -125,10 +126,47 @@ def stdin() -> BinaryIO:
     return _wrapped_stdin[id(stream)]
 
 
+_read_once: dict[str, BinaryIO] = {}
+
+
+def read_once(path: str) -> BinaryIO | None:
+    """The stream of an input that can be read only once: standard input (``-``), a FIFO, a
+    process substitution (``<(plantri 10)``), a device. It is opened once, and sniffing peeks
+    into it: opened again, it would have lost what was read, or, a FIFO, wait for a writer
+    that is gone. None for a file (or a path that is not there: its reader says so)."""
+    if path == "-":
+        return stdin()
+    if path not in _read_once:
+        try:
+            mode = os.stat(path).st_mode
+        except (OSError, ValueError):
+            return None
+        if stat.S_ISREG(mode) or stat.S_ISDIR(mode):
+            return None
+        try:
+            stream = open(path, "rb")  # noqa: SIM115 (closed by _open, once read)
+        except OSError as exc:
+            raise InputError(path, exc.strerror or str(exc)) from None
+        enlarge_pipe(stream)
+        _read_once[path] = stream
+    return _read_once[path]
+
+
+def done_reading(path: str) -> None:
+    """Close the :func:`read_once` stream of ``path`` once it is read (standard input stays)."""
+    stream = _read_once.pop(path, None)
+    if stream is not None:
+        stream.close()
+
+
 @contextmanager
 def _open(path: str) -> Iterator[BinaryIO]:
-    if path == "-":
-        yield stdin()
+    once = read_once(path)
+    if once is not None:
+        try:
+            yield once
+        finally:
+            done_reading(path)
         return
     try:
         stream = open(path, "rb")  # noqa: SIM115 (closed below, after the generator is done)
