@@ -605,3 +605,15 @@ def test_a_fifo_input_is_read_once_and_whole(runner, tmp_path, command):
         result = runner.invoke(cli, ["summarize", str(fifo), "-q"])
         assert result.exit_code == 0, result.output
         assert result.stdout.startswith("grains: 233 (ok 233, ")
+
+
+def test_a_file_name_that_is_not_utf8_is_kept_as_a_terminal_shows_it(runner, tmp_path):
+    import os
+
+    path = os.path.join(os.fsencode(tmp_path), b"gr\xe4in.txt")
+    with open(path, "wb") as handle:
+        handle.write(CUBE_LINE.encode())
+    out = tmp_path / "out.parquet"
+    result = runner.invoke(cli, ["classify", os.fsdecode(path), "-o", str(out), "-q"])
+    assert result.exit_code == 0, result.output
+    assert pq.read_table(out).column("source").to_pylist() == [f"{tmp_path}/gr\ufffdin.txt"]

@@ -62,7 +62,7 @@ def strings(values: Sequence[str | None]) -> pa.Array:
         data = text.encode("ascii")
         lengths = np.fromiter(map(len, values), np.int64, len(values))
     else:
-        encoded = [value.encode() for value in values]
+        encoded = [_utf8(value) for value in values]
         data = b"".join(encoded)
         lengths = np.fromiter(map(len, encoded), np.int64, len(values))
     offsets = offsets_from_counts(lengths)
@@ -71,9 +71,19 @@ def strings(values: Sequence[str | None]) -> pa.Array:
     return string_array(offsets.astype(np.int32), np.frombuffer(data, np.uint8), valid)
 
 
+def _utf8(text: str) -> bytes:
+    """``text`` as UTF-8. A file name that is not UTF-8 comes from the system with its bytes
+    escaped (surrogates), which UTF-8 cannot hold: they become U+FFFD, as a terminal shows them.
+    """
+    try:
+        return text.encode()
+    except UnicodeEncodeError:
+        return text.encode("utf-8", "surrogateescape").decode("utf-8", "replace").encode()
+
+
 def strings_from_codes(codes: np.ndarray, names: tuple[str, ...]) -> pa.Array:
     """``names[code]`` per row, null where the code is negative."""
-    encoded = [name.encode() for name in names]
+    encoded = [_utf8(name) for name in names]
     table = np.frombuffer(b"".join(encoded), np.uint8)
     name_offsets = offsets_from_counts([len(e) for e in encoded])
     offsets, data = _strings_from_codes(np.asarray(codes, np.int64), table, name_offsets)
