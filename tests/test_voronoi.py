@@ -371,3 +371,20 @@ def test_key_value_fields_read_alike_in_adjacency_text_and_face_loops(tmp_path):
         assert errors == expected_errors, fmt
         assert (rows[0]["volume"], rows[0]["boundary"]) == (2.0, True), fmt
         assert (rows[4]["area"], rows[4]["boundary"]) == (1.5, None), fmt
+
+
+@pytest.mark.parametrize(
+    "top",
+    ["# voro++ -c '%i %v %t'\n", "\n", "7 x (0,1,2)\n"],
+    ids=["comment", "blank line", "a bad cell"],
+)
+def test_voro_is_sniffed_past_the_first_line(tmp_path, top):
+    """What the reader skips or reports as one bad cell must not make the sniffer take the
+    file for adjacency text, every cell an invalid row; loops may have spaces after commas."""
+    path = tmp_path / "cells.vol"
+    path.write_text(
+        top + "1 0.5 (0, 1, 2) (0,2,3) (0,3,1) (1,3,2)\n2 0.5 (0,1,2) (0,2,3) (0,3,1) (1,3,2)\n"
+    )
+    rows = classify(next(read_dataset(str(path)))).to_pylist()
+    assert [r["status"] for r in rows][-2:] == ["ok", "ok"]
+    assert len(rows) == (3 if top.startswith("7") else 2)

@@ -16,13 +16,18 @@ import numpy as np
 from grainclass.batch import GrainBatch
 from grainclass.readers.loops import LoopText
 
-LINE = re.compile(rb"^\s*\d+(\s+[-+0-9.eE]+){0,2}\s+\(\d+(,\d+)*\)")
+LINE = re.compile(rb"^\s*-?\d+(\s+[-+0-9.eE]+){0,2}\s+\(\s*\d+(\s*,\s*\d+)*\s*\)")
+SNIFFED_LINES = 5
 
 
 def looks_like_voro(head: bytes) -> bool:
-    """True when the first line of ``head`` is a cell written by ``%i [%v [%F]] %t``."""
-    first = head.split(b"\n", 1)[0]
-    return bool(LINE.match(first))
+    """True when one of the first lines of ``head`` that are not blank or comments is a cell
+    written by ``%i [%v [%F]] %t``: no other format has a parenthesised loop, and one odd cell
+    at the top should not make the whole file unreadable."""
+    lines = (
+        line for line in head.splitlines() if line.strip() and not line.lstrip().startswith(b"#")
+    )
+    return any(LINE.match(line) for _, line in zip(range(SNIFFED_LINES), lines))
 
 
 # A loop "(1,3,2)" read as the loop text of loops.py, "1 3 2;" (byte for byte, in C).
