@@ -8,6 +8,7 @@ Accepted format strings (``voro++ -c FORMAT``): ``"%i %t"``, ``"%i %v %t"`` and
 
 from __future__ import annotations
 
+import itertools
 import re
 from collections.abc import Iterable, Iterator
 
@@ -27,7 +28,7 @@ def looks_like_voro(head: bytes) -> bool:
     lines = (
         line for line in head.splitlines() if line.strip() and not line.lstrip().startswith(b"#")
     )
-    return any(LINE.match(line) for _, line in zip(range(SNIFFED_LINES), lines))
+    return any(LINE.match(line) for line in itertools.islice(lines, SNIFFED_LINES))
 
 
 # A loop "(1,3,2)" read as the loop text of loops.py, "1 3 2;" (byte for byte, in C).
