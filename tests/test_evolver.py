@@ -180,3 +180,28 @@ def test_standard_input_is_refused_with_a_reason(forced):
     result = CliRunner().invoke(cli, ["classify", *options, "-", "-o", "-"], input=text)
     assert result.exit_code == 1
     assert "-: Surface Evolver input must be a file or a folder" in result.stderr
+
+
+@pytest.mark.parametrize(
+    ("spoil", "bad_body", "message"),
+    [
+        (("2\t-2 7 8 9 10 11", "2\t-2 7 8 9 10 11 volume"), "2", "cannot read this body line"),
+        (("2\t-2 7 8 9 10 11", "2\tx7 8 9 10 11"), "2", "cannot read this body line"),
+        (
+            ("12\t2\t0\t1", "12\t2\tzero\t1"),
+            "2",
+            "body 2: cannot read the line of its vertex 12 (line 18)",
+        ),
+    ],
+    ids=["volume without value", "no facets", "vertex line"],
+)
+def test_one_bad_line_of_a_whole_foam_fails_only_the_bodies_that_need_it(
+    tmp_path, spoil, bad_body, message
+):
+    text = (DATA / "two_cubes.fe").read_text()
+    assert text.count(spoil[0]) == 1
+    path = tmp_path / "foam.fe"
+    path.write_text(text.replace(*spoil))
+    rows = _rows(path)
+    assert [(r["grain_id"], r["status"]) for r in rows] == [("1", "ok"), ("2", "invalid")]
+    assert message in rows[1]["error"]

@@ -57,6 +57,8 @@ class _Datafile:
     facets: dict[int, list[int]] = field(default_factory=dict)
     # body id -> (line, signed facet ids, volume or None)
     bodies: dict[int, tuple[int, list[int], float | None]] = field(default_factory=dict)
+    # (section, id) -> line, for lines that cannot be read: only the bodies that need them fail
+    unreadable: dict[tuple[str, int], int] = field(default_factory=dict)
 
 
 def _logical_lines(text: str) -> Iterator[tuple[int, list[str]]]:
@@ -98,7 +100,7 @@ def _parse(text: str, source: str, triple_edges: tuple[str, str]) -> _Datafile:
         number, tokens = lines[i]
         i += 1
         if section is not None and tokens[0].isdigit():
-            _parse_entry(data, section, number, tokens, marker, source)
+            _parse_entry(data, section, number, tokens, marker)
             continue
         word = tokens[0].lower()
         if word == "periods":
@@ -117,11 +119,12 @@ def _parse(text: str, source: str, triple_edges: tuple[str, str]) -> _Datafile:
 
 
 def _parse_entry(
-    data: _Datafile, section: str, number: int, tokens: list[str], marker: str, source: str
+    data: _Datafile, section: str, number: int, tokens: list[str], marker: str
 ) -> None:
-    """One numbered line of a section."""
+    """One numbered line of a section; one that cannot be read is noted in ``unreadable`` (a
+    body's with no facets), for the bodies that need it to report."""
+    ident = int(tokens[0])  # the caller saw digits
     try:
-        ident = int(tokens[0])
         if section == "vertices":
             data.coords[ident] = (float(tokens[1]), float(tokens[2]), float(tokens[3]))
         elif section == "edges":
@@ -138,9 +141,14 @@ def _parse_entry(
             lowered = [t.lower() for t in tokens]
             if "volume" in lowered:
                 volume = float(tokens[lowered.index("volume") + 1])
-            data.bodies[ident] = (number, _leading_integers(tokens[1:]), volume)
+            facets = _leading_integers(tokens[1:])
+            if not facets:
+                raise ValueError("a body needs facets")
+            data.bodies[ident] = (number, facets, volume)
     except (ValueError, IndexError, KeyError):
-        raise InputError(source, f"cannot read this {SECTIONS[section]} line", number) from None
+        data.unreadable[(section, ident)] = number
+        if section == "bodies":
+            data.bodies[ident] = (number, [], None)
 
 
 def _leading_integers(tokens: list[str]) -> list[int]:
@@ -410,6 +418,9 @@ def _read_file(path: str, triple_edges: tuple[str, str]) -> list[_Grain]:
     except InputError as exc:
         return [_Grain(stem, path, exc.line or 1, error=exc.message)]
     if not data.bodies:  # an empty or cut-off dump still has its row, not silence
+        if data.unreadable:  # the first line that could not be read says more
+            (section, _), line = min(data.unreadable.items(), key=lambda item: item[1])
+            return [_Grain(stem, path, line, error=f"cannot read this {SECTIONS[section]} line")]
         return [_Grain(stem, path, 1, error=_NO_BODIES)]
     facet_bodies: dict[int, list[int]] = defaultdict(list)
     for body, (_, signed, _) in data.bodies.items():
@@ -419,14 +430,27 @@ def _read_file(path: str, triple_edges: tuple[str, str]) -> list[_Grain]:
     grains = []
     for body, (line, _, _) in data.bodies.items():
         grain_id = stem if len(data.bodies) == 1 else str(body)
+        if ("bodies", body) in data.unreadable:
+            grains.append(_Grain(grain_id, path, line, error="cannot read this body line"))
+            continue
         try:
             lists, volume, area, boundary = _grain(data, body, facet_bodies, marked)
             grains.append(_Grain(grain_id, path, line, lists, volume, area, boundary))
         except GrainError as exc:
             grains.append(_Grain(grain_id, path, line, error=str(exc)))
         except KeyError as exc:
-            grains.append(_Grain(grain_id, path, line, error=f"body {body}: unknown id {exc}"))
+            grains.append(_Grain(grain_id, path, line, error=_missing(data, body, exc.args[0])))
     return grains
+
+
+def _missing(data: _Datafile, body: int, ident: object) -> str:
+    """Why body ``body`` met an id it could not find: a line that could not be read, or none."""
+    for section in ("vertices", "edges", "facets"):
+        line = data.unreadable.get((section, ident))
+        if line is not None:
+            what = SECTIONS[section]
+            return f"body {body}: cannot read the line of its {what} {ident} (line {line})"
+    return f"body {body}: unknown id {ident}"
 
 
 @dataclass
