@@ -95,3 +95,19 @@ def test_any_lines_read_alike_both_ways(lines, chunk_size, last_newline):
     with pytest.MonkeyPatch.context() as monkeypatch:
         fast, slow = _both_ways(text.encode(), chunk_size, monkeypatch)
     assert fast == slow
+
+
+@pytest.mark.parametrize(
+    "text",
+    [
+        f"cube\t{CUBE}\t\n".encode(),
+        f"cube\t{CUBE} \t \n".encode(),
+        f"cube\t{CUBE}\tvolume=1\t\n".encode(),
+        f"# gr\xe4ins, in Latin-1\ncube\t{CUBE}\n".encode("latin-1"),
+    ],
+    ids=["trailing tab", "trailing blanks", "tab after a field", "Latin-1 comment"],
+)
+def test_what_an_editor_leaves_around_a_grain_is_not_an_error(text):
+    (batch,) = adjacency.read_adjacency(io.BytesIO(text), "x", 10)
+    assert list(batch.grain_id) == ["cube"]
+    assert batch.parse_errors == {}

@@ -173,9 +173,12 @@ def parse_face_spans(
 def key_values(fields: Sequence[str]) -> tuple[dict[str, float], bool | None, dict[str, str]]:
     """The ``key=value`` fields of a grain's line (adjacency text, face loops): ``volume`` and
     ``area`` as floats (NaN when absent), the ``boundary`` flag (None when absent) and the
-    other keys' values as strings. Raises ValueError naming the field that cannot be read."""
+    other keys' values as strings. Raises ValueError naming the field that cannot be read.
+    Empty fields (a TAB at the end of the line) are none."""
     values: dict[str, str] = {}
     for text in fields:
+        if not text.strip():
+            continue
         key, sep, value = text.partition("=")
         if not sep or not key.strip():
             raise ValueError(f"field {text!r} is not key=value")
@@ -238,14 +241,14 @@ def read_adjacency(lines: Iterable[bytes], source: str, chunk_size: int) -> Iter
             yield plain
         else:
             for line_no, raw in enumerate(raw_lines, first_line):
+                if not raw.strip() or raw.lstrip().startswith(b"#"):
+                    continue  # a comment need not be UTF-8
                 try:
                     line = raw.decode("utf-8").rstrip("\r\n")
                 except UnicodeDecodeError as exc:
                     grain_id = raw.split(b"\t", 1)[0].decode("utf-8", "replace").strip()
                     chunk.add_unreadable(line_no, grain_id, f"not UTF-8 text ({exc.reason})")
                 else:
-                    if not line.strip() or line.lstrip().startswith("#"):
-                        continue
                     chunk.add(line_no, line)
                 if len(chunk) >= chunk_size:
                     yield chunk.batch()
