@@ -69,7 +69,7 @@ def main() -> int:
                 f"n = {n}: {summary['headline']['grains']} triangulations, "
                 f"plantri | classify in {seconds:.1f} s"
             )
-            row = next(r for r in summary["classes"] if r["n"] == str(n))
+            row = next(r for r in summary["classes"] if r["n"] == n)
             got = tuple(row[c] for c in CLASS_COLUMNS)
             print(_line("Table II", CLASS_COLUMNS))
             print(_line("paper", TABLE_II[n]))

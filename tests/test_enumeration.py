@@ -83,7 +83,7 @@ def summary_4_to_12(plantri_output, tmp_path_factory):
 
 @pytest.mark.parametrize("n", range(4, 13))
 def test_enumeration_reproduces_table_ii(summary_4_to_12, n):
-    row = next(r for r in summary_4_to_12["classes"] if r["n"] == str(n))
+    row = next(r for r in summary_4_to_12["classes"] if r["n"] == n)
     assert tuple(row[c] for c in CLASS_COLUMNS) == TABLE_II[n]
 
 
@@ -131,7 +131,7 @@ def test_enumeration_reproduces_paper_for_13_and_14(plantri, tmp_path, n):
         _grainclass("classify", "-", "-o", str(out), stdin=producer.stdout)
     assert producer.returncode == 0
     summary = _summary([out], "--n", str(n))
-    row = next(r for r in summary["classes"] if r["n"] == str(n))
+    row = next(r for r in summary["classes"] if r["n"] == n)
     assert tuple(row[c] for c in CLASS_COLUMNS) == TABLE_II[n]
     split = next(r for r in summary["split"] if r["n"] == n)
     assert {int(k): v for k, v in split.items() if k != "n" and v} == SPLIT[n]

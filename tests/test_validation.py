@@ -136,6 +136,14 @@ def test_planar_code_streams_one_after_another_read_as_one(plantri_output, tmp_p
     assert rows[-1]["penalty"] == 18
 
 
+def test_text_with_a_stray_0_byte_or_in_utf16_is_not_sniffed_as_planar_code():
+    """Any 0 byte made planar_code of it: every line an invalid 'record', none named text."""
+    line = "cube\t1 2 3 4;0 4 5 2;0 1 5 3;0 2 5 4;0 3 5 1;1 4 3 2\n"
+    assert sniff(line.encode() + b"\x00\n") == "adjacency"
+    assert sniff(b"a\t1 2 3;0 3 2;0 1 3;0 2 1\x00\n") == "adjacency"
+    assert sniff(line.encode("utf-16")) == "not grains"
+
+
 def test_planar_code_without_header_is_sniffed(plantri_output, tmp_path):
     data = plantri_output(7).read_bytes()[len(b">>planar_code<<") :]
     assert sniff(data[:64]) == "planar_code"

@@ -1,7 +1,7 @@
 """Readers: every input format becomes a stream of :class:`~grainclass.batch.GrainBatch` chunks.
 
-The format is sniffed from the content: planar_code always holds 0 bytes (its terminators)
-and text never does.
+The format is sniffed from the content: planar_code always holds 0 bytes (its terminators),
+and text has none but by accident (:func:`_looks_like_planar_code` tells the two apart).
 """
 
 from __future__ import annotations
@@ -62,7 +62,7 @@ def sniff(head: bytes) -> str:
     if _not_grains(head):
         return "not grains"
     head = head.removeprefix(_BOM)
-    if head.startswith(b">>planar_code") or b"\x00" in head:
+    if _looks_like_planar_code(head):
         return "planar_code"
     if _EVOLVER.search(head):
         return "evolver"
@@ -75,7 +75,38 @@ def sniff(head: bytes) -> str:
 
 def _not_grains(head: bytes) -> str | None:
     """What an input that holds no grains is, from its first bytes; None for anything else."""
+    if head[:2] in (b"\xff\xfe", b"\xfe\xff"):  # a byte order mark, as Windows writes UTF-16
+        try:
+            head[: len(head) // 2 * 2].decode("utf-16")
+        except UnicodeDecodeError:
+            return None
+        return "UTF-16 text: save it as UTF-8 (iconv -f UTF-16 -t UTF-8 FILE)"
     return next((why for magic, why in _NOT_GRAINS.items() if head.startswith(magic)), None)
+
+
+def _looks_like_planar_code(head: bytes) -> bool:
+    """planar_code: a header, or a first record that holds together: n, then n lists ended by
+    0 bytes, every entry at most n, the first list without a repeat (or n in 2-byte entries,
+    after a 0). Text, repeating its blanks and digits, would have to start with a control
+    character: a stray 0 byte in text does not make it planar_code."""
+    if head.startswith(b">>planar_code"):
+        return True
+    if b"\x00" not in head:
+        return False
+    n = head[0]
+    if n == 0:
+        return True
+    first_list = head[1:].split(b"\x00", 1)[0]
+    if len(set(first_list)) != len(first_list):
+        return False
+    zeros = 0
+    for byte in head[1:]:
+        if byte > n:
+            return False
+        zeros += byte == 0
+        if zeros == n:
+            return True
+    return True  # a record longer than the head: nothing against it
 
 
 def _sniff_path(path: str, format: str | None) -> str:
