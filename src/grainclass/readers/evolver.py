@@ -19,6 +19,7 @@ import functools
 import itertools
 import os
 import re
+import signal
 from collections import defaultdict
 from collections.abc import Iterable, Iterator
 from concurrent.futures import ProcessPoolExecutor
@@ -359,6 +360,21 @@ def _measure(position: np.ndarray, polygons: list[list[int]]) -> tuple[float, fl
     return volume, area
 
 
+@contextlib.contextmanager
+def _interrupts_blocked() -> Iterator[None]:
+    """SIGINT blocked in this thread, and so in the processes it starts: Ctrl-C reaches every
+    process of the terminal's group, and workers interrupted mid-import printed tracebacks
+    (and once left the pool hung). The parent stops them."""
+    if not hasattr(signal, "pthread_sigmask"):  # Windows
+        yield
+        return
+    before = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
+    try:
+        yield
+    finally:
+        signal.pthread_sigmask(signal.SIG_SETMASK, before)
+
+
 def read_evolver(
     paths: Iterable[str],
     chunk_size: int,
@@ -388,10 +404,10 @@ def read_evolver(
         if len(paths) >= PARALLEL_FILES and (os.cpu_count() or 1) > 1:
             # Parsing is pure Python: a folder of dumps is read by one process per core. Spawned,
             # not forked: the parent may be running compiled kernels in threads.
-            pool = stack.enter_context(
-                ProcessPoolExecutor(os.cpu_count(), mp_context=get_context("spawn"))
-            )
-            per_file = pool.map(read, paths, chunksize=16)
+            pool = ProcessPoolExecutor(os.cpu_count(), mp_context=get_context("spawn"))
+            stack.callback(pool.shutdown, wait=True, cancel_futures=True)
+            with _interrupts_blocked():  # map starts the workers
+                per_file = pool.map(read, paths, chunksize=16)
         for file_grains in per_file:
             grains += file_grains
             if len(grains) >= chunk_size:
