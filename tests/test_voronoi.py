@@ -388,3 +388,19 @@ def test_voro_is_sniffed_past_the_first_line(tmp_path, top):
     rows = classify(next(read_dataset(str(path)))).to_pylist()
     assert [r["status"] for r in rows][-2:] == ["ok", "ok"]
     assert len(rows) == (3 if top.startswith("7") else 2)
+
+
+def test_a_negative_volume_makes_an_unreadable_row(tmp_path):
+    """No body has one; taken as given, Q = 36 pi V^2 / S^3 would hide the sign."""
+    cell = "(0,1,2) (0,2,3) (0,3,1) (1,3,2)"
+    voro = tmp_path / "cells.vol"
+    voro.write_text(f"1 -0.5 {cell}\n2 0.5 {cell}\n")
+    text = tmp_path / "cells.txt"
+    text.write_text("a\t1 2 3;0 3 2;0 1 3;0 2 1\tvolume=-1\nb\t1 2 3;0 3 2;0 1 3;0 2 1\tvolume=1\n")
+    for path, why in (
+        (voro, "a negative volume or area (-0.5)"),
+        (text, "volume='-1' is negative"),
+    ):
+        rows = classify(next(read_dataset(str(path)))).to_pylist()
+        assert [r["status"] for r in rows] == ["invalid", "ok"]
+        assert rows[0]["error"].endswith(why)

@@ -190,6 +190,8 @@ def key_values(fields: Sequence[str]) -> tuple[dict[str, float], bool | None, di
             floats[key] = np.nan if number is None else float(number)
         except ValueError:
             raise ValueError(f"{key}={number!r} is not a number") from None
+        if floats[key] < 0:
+            raise ValueError(f"{key}={number!r} is negative")
     flag = values.pop("boundary", None)
     if flag is not None and flag.lower() not in BOOLEANS:
         raise ValueError(f"boundary={flag!r}: expected 1/0, true/false or yes/no")
