@@ -114,8 +114,8 @@ def _sniff_path(path: str, format: str | None) -> str:
         return format
     if path != "-" and path.lower().endswith(".fe"):
         return "evolver"
-    if read_once(path) is not None:
-        return ""  # sniffed from the stream itself
+    if path == "-" or _is_stream(path):
+        return ""  # sniffed from the stream itself, once it is opened in its turn
     try:
         with open(path, "rb") as handle:
             return sniff(handle.read(4096))
@@ -160,6 +160,15 @@ def stdin() -> BinaryIO:
 _read_once: dict[str, BinaryIO] = {}
 
 
+def _is_stream(path: str) -> bool:
+    """Whether ``path`` names something other than a file or a folder (a FIFO, a device)."""
+    try:
+        mode = os.stat(path).st_mode
+    except (OSError, ValueError):
+        return False
+    return not (stat.S_ISREG(mode) or stat.S_ISDIR(mode))
+
+
 def read_once(path: str) -> BinaryIO | None:
     """The stream of an input that can be read only once: standard input (``-``), a FIFO, a
     process substitution (``<(plantri 10)``), a device. It is opened once, and sniffing peeks
@@ -168,11 +177,7 @@ def read_once(path: str) -> BinaryIO | None:
     if path == "-":
         return stdin()
     if path not in _read_once:
-        try:
-            mode = os.stat(path).st_mode
-        except (OSError, ValueError):
-            return None
-        if stat.S_ISREG(mode) or stat.S_ISDIR(mode):
+        if not _is_stream(path):
             return None
         try:
             stream = open(path, "rb")  # noqa: SIM115 (closed by _open, once read)
