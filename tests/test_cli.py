@@ -86,6 +86,7 @@ def test_classify_missing_input_exits_1_and_leaves_no_file(runner, tmp_path):
         ["voronoi", "10", "--seed", "-5", "-o", "y"],
         ["summarize", "x.parquet", "--table", "nope"],
         ["summarize", "x.parquet", "--n", "3"],
+        ["summarize", "x.parquet", "--n", "14", "--table", "classes"],
         ["frobnicate"],
     ],
 )

@@ -298,6 +298,10 @@ def summarize_cmd(
     tables = (table_name,) if table_name else TABLES
     if fmt == "parquet" and len(tables) != 1:
         raise click.UsageError("parquet output holds one table: choose one with --table")
+    if n_values and "round" not in tables:
+        raise click.UsageError(
+            f"--n adds rows to the round table, which --table {table_name} leaves out"
+        )
     if fmt == "parquet" and output == "-" and sys.stdout.isatty():
         raise click.UsageError("refusing to write Parquet to a terminal; use -o FILE")
     _set_jobs(jobs)
