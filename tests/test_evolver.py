@@ -135,6 +135,17 @@ def test_malformed_file_is_one_bad_grain_among_good_ones(tmp_path):
     assert rows[1]["error"] == f"{tmp_path / 'b.fe'}:2: cannot read this vertex line"
 
 
+def test_a_digit_that_int_cannot_read_is_no_entry(tmp_path):
+    """'²' is a digit to str.isdigit() but not to int(): taken for an entry id, it crashed."""
+    path = tmp_path / "sup.fe"
+    path.write_text(
+        (DATA / "two_cubes.fe").read_text().replace("\n12\t2\t0\t1", "\n\u00b2\t2\t0\t1")
+    )
+    rows = _rows(path)
+    assert [(r["grain_id"], r["status"]) for r in rows] == [("1", "ok"), ("2", "invalid")]
+    assert "body 2: unknown id 12" in rows[1]["error"]
+
+
 def test_file_without_bodies_keeps_its_row(tmp_path):
     """An empty dump, or one cut off before its bodies, among good ones: a row each, invalid."""
     good = (FIXTURE_DIR / "21000-00000029.fe").read_text()

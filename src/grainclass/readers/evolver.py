@@ -100,7 +100,7 @@ def _parse(text: str, source: str, triple_edges: tuple[str, str]) -> _Datafile:
     while i < len(lines):
         number, tokens = lines[i]
         i += 1
-        if section is not None and tokens[0].isdigit():
+        if section is not None and tokens[0].isdecimal():  # what int() reads, unlike "²"
             _parse_entry(data, section, number, tokens, marker)
             continue
         word = tokens[0].lower()
@@ -158,7 +158,7 @@ def _leading_integers(tokens: list[str]) -> list[int]:
     except ValueError:  # attributes follow the ids
         out = []
         for t in tokens:
-            if not t.lstrip("+-").isdigit():
+            if not t.lstrip("+-").isdecimal():
                 break
             out.append(int(t))
         return out
