@@ -146,6 +146,7 @@ def test_malformed_entries_make_the_second_cube_invalid(old, new, message):
         (" **edge\n 20\n", " **edge\n -20\n", "**edge: expected the number of entries"),
         ("   12  2.0000", "   12  x.0000", "bad vertex 12"),
         ("   12  2.0000", "   13  2.0000", "id 13 is not between 1 and 12"),
+        ("   12  2.0000", "   12.0  2.0000", "the id '12.0' is not a whole number"),
         ("   20  6 5 0", "   19  6 5 0", "id 19 appears twice"),
         (" **polyhedron", " **polyhedra", "no **polyhedron section"),
         (" **edge", " **vertex", "section **vertex appears twice"),

@@ -139,6 +139,8 @@ def _table(sections: _Sections, name: str, width: int) -> dict[int, tuple[int, l
         try:
             if len(fields) < width + 1:
                 raise ValueError(f"expected an id and {width} values")
+            if not fields[0].isdecimal():
+                raise ValueError(f"the id {fields[0]!r} is not a whole number")
             entry_id = int(fields[0])
             if not 1 <= entry_id <= count:
                 raise ValueError(f"id {entry_id} is not between 1 and {count}")
