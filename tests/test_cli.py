@@ -618,3 +618,21 @@ def test_a_file_name_that_is_not_utf8_is_kept_as_a_terminal_shows_it(runner, tmp
     result = runner.invoke(cli, ["classify", os.fsdecode(path), "-o", str(out), "-q"])
     assert result.exit_code == 0, result.output
     assert pq.read_table(out).column("source").to_pylist() == [f"{tmp_path}/gr\ufffdin.txt"]
+
+
+def test_a_header_cut_across_two_writes_is_still_sniffed():
+    """A peek takes what one read gives: the first 8 bytes of '>>planar_code<<' alone made the
+    stream adjacency text, every record an invalid row."""
+    import time
+
+    data = (EXAMPLES / "plantri-10.pc").read_bytes()
+    run = subprocess.Popen(
+        [sys.executable, "-m", "grainclass", "summarize", "-", "-q"],
+        stdin=subprocess.PIPE,
+        stdout=subprocess.PIPE,
+    )
+    run.stdin.write(data[:8])
+    run.stdin.flush()
+    time.sleep(1.5)  # the reader starts up and peeks meanwhile
+    out, _ = run.communicate(data[8:], timeout=120)
+    assert out.decode().startswith("grains: 233 (ok 233, ")

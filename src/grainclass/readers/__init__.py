@@ -195,6 +195,48 @@ def done_reading(path: str) -> None:
         stream.close()
 
 
+SNIFF_BYTES = 4096
+
+
+class _Replayed(io.RawIOBase):
+    """``head``, then the rest of ``stream``: bytes read to sniff, given back."""
+
+    def __init__(self, head: bytes, stream: BinaryIO) -> None:
+        self._head = memoryview(head)
+        self._stream = stream
+
+    def readable(self) -> bool:
+        return True
+
+    def fileno(self) -> int:
+        return self._stream.fileno()  # for is_pipe(): the pipe is the stream's
+
+    def readinto(self, buffer) -> int:  # type: ignore[override]
+        if self._head:
+            n = min(len(buffer), len(self._head))
+            buffer[:n] = self._head[:n]
+            self._head = self._head[n:]
+            return n
+        return self._stream.readinto1(buffer)
+
+
+def _with_head(stream: BinaryIO) -> tuple[BinaryIO, bytes]:
+    """A stream to read and its first SNIFF_BYTES bytes (fewer at its end), to sniff. A peek
+    takes what one read gives: from a writer that has written only a few bytes yet (a header
+    cut across two writes, over a network), too few to tell the format. Then the head is read,
+    until there is enough, and given back in front of the rest."""
+    head = stream.peek(SNIFF_BYTES)[:SNIFF_BYTES]
+    if len(head) >= SNIFF_BYTES or not head:
+        return stream, head
+    read = bytearray()
+    while len(read) < SNIFF_BYTES:
+        more = stream.read1(SNIFF_BYTES - len(read))
+        if not more:
+            break
+        read += more
+    return io.BufferedReader(_Replayed(bytes(read), stream), 1 << 16), bytes(read)
+
+
 @contextmanager
 def _open(path: str) -> Iterator[BinaryIO]:
     once = read_once(path)
@@ -265,8 +307,11 @@ def read_dataset(
             continue
         path = paths[k]
         k += 1
-        with _open(path) as stream:
-            fmt = formats[k - 1] or sniff(stream.peek(4096)[:4096])
+        with _open(path) as opened:
+            stream = opened
+            if not formats[k - 1]:
+                stream, head = _with_head(opened)
+            fmt = formats[k - 1] or sniff(head)
             if fmt == "not grains":
                 raise InputError(path, _not_grains(stream.peek(8)) or "not grains")
             if fmt != "planar_code" and stream.peek(3)[:3] == _BOM:
