@@ -126,6 +126,7 @@ def test_malformed_entries_make_the_second_cube_invalid(old, new, message):
     rows = _rows_of(TWO.replace(old, new))
     assert rows[0]["status"] == "ok"
     assert rows[1]["status"] == "invalid"
+    assert rows[1]["boundary"] is None  # no faces to tell
     line = TWO.splitlines().index(POLY2.rstrip("\n")) + 1
     assert rows[1]["error"].startswith(f"t.tess:{line}: ")
     assert message in rows[1]["error"]

@@ -355,10 +355,10 @@ def read_neper(stream: BinaryIO, source: str, chunk_size: int) -> Iterator[Grain
                 error = f"polyhedron {grain_id}: {error}"
         rows.append((grain_id, line_no, error))
         grain_loops.append(loops)
-        if periodic:  # faces on the periodic box are not cuts: which grains are cut is unknown
+        if periodic or loops is None:  # periodic: box faces are not cuts; no loops: no faces
             boundary.append(None)
         else:
-            boundary.append(loops is not None and any(face_uses[abs(f)] == 1 for f in signed or []))
+            boundary.append(any(face_uses[abs(f)] == 1 for f in signed))
     volume, area = _measures(coords, grain_loops)
 
     chunk_size = max(chunk_size, 1)
