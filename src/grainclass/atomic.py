@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+import re
 import stat
 import sys
 import tempfile
@@ -12,6 +13,9 @@ from typing import BinaryIO
 
 from grainclass.errors import OutputError
 
+# Paths that name an open file descriptor of this process, whatever it is open on.
+_FD_ALIAS = re.compile(r"^/(dev/(stdout|stderr|fd/\d+)|proc/(self|\d+)/fd/\d+)$")
+
 
 @contextmanager
 def atomic_output(path: str, binary_stdout_ok: bool = True) -> Iterator[BinaryIO]:
@@ -20,8 +24,9 @@ def atomic_output(path: str, binary_stdout_ok: bool = True) -> Iterator[BinaryIO
     goes; ``binary_stdout_ok=False`` refuses it when that is a terminal).
 
     A symbolic link is followed: the file it names is replaced, the link stays. A path that
-    names something other than a file (``/dev/null``, a FIFO) is written through as it goes,
-    as a shell's redirection would: renaming over it would replace the device or the pipe.
+    names something other than a file (``/dev/null``, a FIFO), or one of the process's own
+    open files (``/dev/stdout``, ``/dev/fd/3``), is written through as it goes, as a shell's
+    redirection would: renaming over it would replace the device, the pipe or the file.
     Replacing a file keeps its permissions. An OSError in the block becomes an OutputError,
     except a BrokenPipeError (the reader went away), which callers end quietly on.
     """
@@ -32,15 +37,18 @@ def atomic_output(path: str, binary_stdout_ok: bool = True) -> Iterator[BinaryIO
             yield sys.stdout.buffer
             sys.stdout.buffer.flush()
         return
-    target = os.path.realpath(path)
     try:
-        mode = os.stat(target).st_mode
+        mode = os.stat(path).st_mode
     except OSError:
         mode = None
-    if mode is not None and not stat.S_ISREG(mode):
-        with _as_output_error(path), open(target, "wb") as sink:
+    if _FD_ALIAS.match(path) or (mode is not None and not stat.S_ISREG(mode)):
+        # Appended to, as by the shell's >>: /dev/stdout after > or >> a file is that file,
+        # opened already (truncated or not, as the user asked), and replacing it would cut
+        # the link to what the process writes there.
+        with _as_output_error(path), open(path, "ab") as sink:
             yield sink
         return
+    target = os.path.realpath(path)
     try:
         fd, tmp = tempfile.mkstemp(
             prefix=f".{os.path.basename(target)}.", suffix=".tmp", dir=os.path.dirname(target)

@@ -648,7 +648,8 @@ def main() -> None:
     os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
     warnings.showwarning = _show_warning
     for name in ("SIGTERM", "SIGHUP"):  # not on Windows
-        if hasattr(signal, name):
+        # One ignored already stays so: nohup ignores SIGHUP for a run to outlive its terminal.
+        if hasattr(signal, name) and signal.getsignal(getattr(signal, name)) != signal.SIG_IGN:
             signal.signal(getattr(signal, name), _stop)
     try:
         code = cli.main(standalone_mode=False)
