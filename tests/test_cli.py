@@ -620,19 +620,86 @@ def test_a_file_name_that_is_not_utf8_is_kept_as_a_terminal_shows_it(runner, tmp
     assert pq.read_table(out).column("source").to_pylist() == [f"{tmp_path}/gr\ufffdin.txt"]
 
 
-def test_a_header_cut_across_two_writes_is_still_sniffed():
+class _Reads(io.RawIOBase):
+    """A stream that gives ``chunks`` one read each, as a slow writer's pipe or a terminal
+    does; an empty chunk is an end of input (a terminal gives more after one)."""
+
+    def __init__(self, chunks: list[bytes]) -> None:
+        self.chunks = list(chunks)
+
+    def readable(self) -> bool:
+        return True
+
+    def readinto(self, buffer) -> int:
+        if not self.chunks:
+            return 0
+        chunk = self.chunks.pop(0)
+        n = min(len(buffer), len(chunk))
+        buffer[:n] = chunk[:n]
+        if n < len(chunk):
+            self.chunks.insert(0, chunk[n:])
+        return n
+
+
+@pytest.mark.parametrize("kind", ["planar_code", "parquet", "short text"])
+def test_a_head_cut_across_reads_is_still_sniffed(monkeypatch, tmp_path, kind):
     """A peek takes what one read gives: the first 8 bytes of '>>planar_code<<' alone made the
-    stream adjacency text, every record an invalid row."""
+    stream adjacency text (every record an invalid row), 2 bytes of 'PAR1' raw grains. An
+    input shorter than the head ends where it ends: a terminal gives more after a Ctrl-D."""
+    from grainclass.pipeline import grain_tables
+
+    if kind == "short text":
+        reads = _Reads([CUBE_LINE[:5].encode(), CUBE_LINE[5:].encode(), b"", b"x\t0 1\n"])
+        monkeypatch.setattr(sys, "stdin", io.TextIOWrapper(io.BufferedReader(reads)))
+        (table,) = grain_tables(["-"], ["status", "weinberg"])
+        assert table.column("status").to_pylist() == ["ok"]
+        return
+    if kind == "planar_code":
+        data = (EXAMPLES / "plantri-10.pc").read_bytes()
+    else:
+        result, table = _classify(CliRunner(), tmp_path, EXAMPLES / "plantri-10.pc")
+        assert result.exit_code == 0
+        data = table.read_bytes()
+    # After the input's end, a terminal would give more: it must not be read.
+    reads = _Reads(
+        [data[: 2 if kind == "parquet" else 8], data[8 if kind != "parquet" else 2 :], b"", b"x"]
+    )
+    monkeypatch.setattr(sys, "stdin", io.TextIOWrapper(io.BufferedReader(reads)))
+    tables = list(grain_tables(["-"], ["status", "weinberg"]))
+    assert sum(t.column("status").to_pylist().count("ok") for t in tables) == 233
+    assert sum(len(t) for t in tables) == 233
+
+
+def test_output_to_dev_stdout_appends_to_what_stdout_is(tmp_path):
+    """-o /dev/stdout after >> log: the log is written to, not replaced by a new file."""
+    log = tmp_path / "log.txt"
+    log.write_text("before\n")
+    command = [sys.executable, "-m", "grainclass", "summarize", str(EXAMPLES / "polytopes.txt")]
+    with open(log, "ab") as appended:
+        subprocess.run([*command, "-q", "-o", "/dev/stdout"], stdout=appended, check=True)
+    lines = log.read_text().splitlines()
+    assert lines[0] == "before"
+    assert lines[1].startswith("grains: 13 ")
+
+
+def test_sighup_ignored_by_nohup_stays_ignored(tmp_path):
+    import os
+    import signal
     import time
 
-    data = (EXAMPLES / "plantri-10.pc").read_bytes()
+    out = tmp_path / "out.parquet"
     run = subprocess.Popen(
-        [sys.executable, "-m", "grainclass", "summarize", "-", "-q"],
+        [sys.executable, "-m", "grainclass", "classify", "-", "-o", str(out), "-q"],
         stdin=subprocess.PIPE,
-        stdout=subprocess.PIPE,
+        preexec_fn=lambda: signal.signal(signal.SIGHUP, signal.SIG_IGN),  # what nohup does
     )
-    run.stdin.write(data[:8])
+    run.stdin.write(CUBE_LINE.encode() * 1000)
     run.stdin.flush()
-    time.sleep(1.5)  # the reader starts up and peeks meanwhile
-    out, _ = run.communicate(data[8:], timeout=120)
-    assert out.decode().startswith("grains: 233 (ok 233, ")
+    deadline = time.monotonic() + 60
+    while not any(p.name.endswith(".tmp") for p in tmp_path.iterdir()):
+        assert time.monotonic() < deadline
+        time.sleep(0.05)
+    os.kill(run.pid, signal.SIGHUP)
+    run.stdin.close()
+    assert run.wait(timeout=60) == 0
+    assert pq.read_table(out).num_rows == 1000

@@ -146,6 +146,14 @@ def test_a_digit_that_int_cannot_read_is_no_entry(tmp_path):
     assert "body 2: unknown id 12" in rows[1]["error"]
 
 
+def test_an_id_too_long_for_int_is_an_invalid_row(tmp_path):
+    path = tmp_path / "long.fe"
+    path.write_text("vertices\n" + "1" * 5000 + " 0 0 0\nbodies\n1 1\n")
+    (row,) = _rows(path)
+    assert row["status"] == "invalid"
+    assert "vertex id 11111111111111111111... is too long" in row["error"]
+
+
 def test_file_without_bodies_keeps_its_row(tmp_path):
     """An empty dump, or one cut off before its bodies, among good ones: a row each, invalid."""
     good = (FIXTURE_DIR / "21000-00000029.fe").read_text()

@@ -142,6 +142,7 @@ def test_text_with_a_stray_0_byte_or_in_utf16_is_not_sniffed_as_planar_code():
     assert sniff(line.encode() + b"\x00\n") == "adjacency"
     assert sniff(b"a\t1 2 3;0 3 2;0 1 3;0 2 1\x00\n") == "adjacency"
     assert sniff(line.encode("utf-16")) == "not grains"
+    assert sniff(b"BZh" + line.encode()) == "adjacency"  # bzip2's magic is longer
 
 
 def test_planar_code_without_header_is_sniffed(plantri_output, tmp_path):

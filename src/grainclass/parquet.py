@@ -94,8 +94,19 @@ def iter_grain_tables(path: str, columns: list[str]) -> Iterator[pa.Table]:
 
     try:
         once = read_once(path)
-        source = path if once is None else pa.BufferReader(once.read())
+        # Python opens a file by any name, Arrow only by one that is UTF-8.
+        source = open(path, "rb") if once is None else pa.BufferReader(once.read())  # noqa: SIM115
         done_reading(path)
+    except OSError as exc:
+        raise InputError(path, exc.strerror or str(exc)) from None
+    with source:
+        yield from _row_groups(path, source, columns)
+
+
+def _row_groups(path: str, source: object, columns: list[str]) -> Iterator[pa.Table]:
+    from grainclass.errors import InputError
+
+    try:
         parquet = pq.ParquetFile(source)
     except (OSError, pa.ArrowInvalid) as exc:
         raise InputError(path, f"not a grainclass Parquet table ({exc})") from None

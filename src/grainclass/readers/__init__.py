@@ -31,14 +31,21 @@ from grainclass.vocabulary import INPUT_FORMATS
 _BOM = b"\xef\xbb\xbf"  # what some Windows editors put before UTF-8 text
 _EVOLVER = re.compile(rb"(?im)^\s*(vertices|torus_filled|torus|periods)\s*(//.*)?$")
 
-# Files that hold no grains a reader could take, by their first bytes: named, not misread (their
-# 0 bytes would make them planar_code).
+# Files that hold no grains a reader could take, by their first bytes (whole magic numbers: a
+# grain id may start with "BZh"): named, not misread (their 0 bytes would make them planar_code).
 _NOT_GRAINS = {
-    b"PAR1": "a Parquet table, not grains: summarize and types read it, classify reads grains",
-    b"\x1f\x8b": "gzip-compressed: decompress it first (zcat FILE | grainclass ... -)",
-    b"BZh": "bzip2-compressed: decompress it first (bzcat FILE | grainclass ... -)",
-    b"\xfd7zXZ\x00": "xz-compressed: decompress it first (xzcat FILE | grainclass ... -)",
-    b"\x28\xb5\x2f\xfd": "zstd-compressed: decompress it first (zstdcat FILE | grainclass ... -)",
+    re.compile(rb"PAR1"): "a Parquet table, not grains: summarize and types read it, "
+    "classify reads grains",
+    re.compile(
+        rb"\x1f\x8b\x08"
+    ): "gzip-compressed: decompress it first (zcat FILE | grainclass ... -)",
+    re.compile(rb"BZh[1-9]1AY&SY", re.DOTALL): "bzip2-compressed: decompress it first "
+    "(bzcat FILE | grainclass ... -)",
+    re.compile(
+        rb"\xfd7zXZ\x00"
+    ): "xz-compressed: decompress it first (xzcat FILE | grainclass ... -)",
+    re.compile(rb"\x28\xb5\x2f\xfd"): "zstd-compressed: decompress it first "
+    "(zstdcat FILE | grainclass ... -)",
 }
 
 
@@ -81,7 +88,7 @@ def _not_grains(head: bytes) -> str | None:
         except UnicodeDecodeError:
             return None
         return "UTF-16 text: save it as UTF-8 (iconv -f UTF-16 -t UTF-8 FILE)"
-    return next((why for magic, why in _NOT_GRAINS.items() if head.startswith(magic)), None)
+    return next((why for magic, why in _NOT_GRAINS.items() if magic.match(head)), None)
 
 
 def _looks_like_planar_code(head: bytes) -> bool:
@@ -158,6 +165,7 @@ def stdin() -> BinaryIO:
 
 
 _read_once: dict[str, BinaryIO] = {}
+SNIFF_BYTES = 4096
 
 
 def _is_stream(path: str) -> bool:
@@ -173,9 +181,16 @@ def read_once(path: str) -> BinaryIO | None:
     """The stream of an input that can be read only once: standard input (``-``), a FIFO, a
     process substitution (``<(plantri 10)``), a device. It is opened once, and sniffing peeks
     into it: opened again, it would have lost what was read, or, a FIFO, wait for a writer
-    that is gone. None for a file (or a path that is not there: its reader says so)."""
+    that is gone. Its first SNIFF_BYTES can be peeked at (:func:`_with_head`). None for a
+    file (or a path that is not there: its reader says so)."""
     if path == "-":
-        return stdin()
+        source = stdin()
+        key = f"-{id(source)}"  # a replaced stdin (a test, an embedding program) is another
+        if key not in _read_once:
+            for stale in [k for k in _read_once if k.startswith("-")]:
+                del _read_once[stale]
+            _read_once[key] = _with_head(source, path)
+        return _read_once[key]
     if path not in _read_once:
         if not _is_stream(path):
             return None
@@ -184,7 +199,7 @@ def read_once(path: str) -> BinaryIO | None:
         except OSError as exc:
             raise InputError(path, exc.strerror or str(exc)) from None
         enlarge_pipe(stream)
-        _read_once[path] = stream
+        _read_once[path] = _with_head(stream, path)
     return _read_once[path]
 
 
@@ -195,15 +210,13 @@ def done_reading(path: str) -> None:
         stream.close()
 
 
-SNIFF_BYTES = 4096
-
-
 class _Replayed(io.RawIOBase):
     """``head``, then the rest of ``stream``: bytes read to sniff, given back."""
 
-    def __init__(self, head: bytes, stream: BinaryIO) -> None:
+    def __init__(self, head: bytes, stream: BinaryIO, ended: bool) -> None:
         self._head = memoryview(head)
         self._stream = stream
+        self._ended = ended  # read to its end: a terminal would wait for a second Ctrl-D
 
     def readable(self) -> bool:
         return True
@@ -217,24 +230,28 @@ class _Replayed(io.RawIOBase):
             buffer[:n] = self._head[:n]
             self._head = self._head[n:]
             return n
-        return self._stream.readinto1(buffer)
+        return 0 if self._ended else self._stream.readinto1(buffer)
 
 
-def _with_head(stream: BinaryIO) -> tuple[BinaryIO, bytes]:
-    """A stream to read and its first SNIFF_BYTES bytes (fewer at its end), to sniff. A peek
-    takes what one read gives: from a writer that has written only a few bytes yet (a header
-    cut across two writes, over a network), too few to tell the format. Then the head is read,
-    until there is enough, and given back in front of the rest."""
-    head = stream.peek(SNIFF_BYTES)[:SNIFF_BYTES]
-    if len(head) >= SNIFF_BYTES or not head:
-        return stream, head
-    read = bytearray()
-    while len(read) < SNIFF_BYTES:
-        more = stream.read1(SNIFF_BYTES - len(read))
-        if not more:
-            break
-        read += more
-    return io.BufferedReader(_Replayed(bytes(read), stream), 1 << 16), bytes(read)
+def _with_head(stream: BinaryIO, path: str) -> BinaryIO:
+    """``stream``, or one that gives the same bytes, whose peek() shows its first SNIFF_BYTES
+    (fewer at its end), to sniff. A peek takes what one read gives: from a writer that has
+    written only a few bytes yet (a header cut across two writes, over a network), too few to
+    tell the format. Then the head is read until there is enough, and given back in front of
+    the rest."""
+    try:
+        head = stream.peek(SNIFF_BYTES)[:SNIFF_BYTES]
+        if len(head) >= SNIFF_BYTES or not head:
+            return stream
+        read = bytearray()
+        ended = False
+        while len(read) < SNIFF_BYTES and not ended:
+            more = stream.read1(SNIFF_BYTES - len(read))
+            read += more
+            ended = not more
+    except OSError as exc:
+        raise InputError(path, exc.strerror or str(exc)) from None
+    return io.BufferedReader(_Replayed(bytes(read), stream, ended), 1 << 16)
 
 
 @contextmanager
@@ -307,11 +324,8 @@ def read_dataset(
             continue
         path = paths[k]
         k += 1
-        with _open(path) as opened:
-            stream = opened
-            if not formats[k - 1]:
-                stream, head = _with_head(opened)
-            fmt = formats[k - 1] or sniff(head)
+        with _open(path) as stream:
+            fmt = formats[k - 1] or sniff(stream.peek(SNIFF_BYTES)[:SNIFF_BYTES])
             if fmt == "not grains":
                 raise InputError(path, _not_grains(stream.peek(8)) or "not grains")
             if fmt != "planar_code" and stream.peek(3)[:3] == _BOM:

@@ -101,6 +101,10 @@ def _parse(text: str, source: str, triple_edges: tuple[str, str]) -> _Datafile:
         number, tokens = lines[i]
         i += 1
         if section is not None and tokens[0].isdecimal():  # what int() reads, unlike "²"
+            if len(tokens[0]) > 18:  # past int64, and past what int() reads at 4,300 digits
+                raise InputError(
+                    source, f"{SECTIONS[section]} id {tokens[0][:20]}... is too long", number
+                )
             _parse_entry(data, section, number, tokens, marker)
             continue
         word = tokens[0].lower()
