@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import io
 import json
+import os
 import subprocess
 import sys
 
@@ -495,6 +496,7 @@ def test_output_to_a_fifo_is_written_through_not_replaced(runner, tmp_path):
     assert [p.name for p in tmp_path.iterdir()] == ["fifo"]
 
 
+@pytest.mark.skipif(not os.path.exists("/dev/full"), reason="a Linux device")
 @pytest.mark.parametrize("command", [["summarize"], ["types"], ["classify", "-o", "-"]])
 def test_a_full_standard_output_is_one_line_and_exit_1(command):
     with open("/dev/full", "wb") as full:
