@@ -389,7 +389,6 @@ def test_classify_never_imports_pandas(tmp_path):
 
 
 def test_classify_output_gets_ordinary_file_permissions(runner, tmp_path):
-    import os
 
     result, out = _classify(runner, tmp_path, EXAMPLES / "polytopes.txt")
     assert result.exit_code == 0
@@ -436,7 +435,6 @@ def test_summarize_round_rows_for_n_given_twice_come_once(runner):
 def test_sigterm_and_sighup_leave_no_file_and_exit_128_plus_the_signal(tmp_path):
     """A run stopped by ``timeout`` or a closed terminal cleans up as Ctrl-C does. The input is
     a pipe that stays open, so the run is still reading when the signal comes."""
-    import os
     import signal
     import time
 
@@ -479,7 +477,6 @@ def test_output_through_a_symbolic_link_replaces_its_file_and_keeps_its_permissi
 
 def test_output_to_a_fifo_is_written_through_not_replaced(runner, tmp_path):
     """Renaming a finished file over a FIFO (or a device such as /dev/null) would replace it."""
-    import os
     import threading
 
     fifo = tmp_path / "fifo"
@@ -588,7 +585,6 @@ def test_a_utf8_byte_order_mark_is_not_part_of_the_first_line(runner, tmp_path, 
 def test_a_fifo_input_is_read_once_and_whole(runner, tmp_path, command):
     """A FIFO (or `<(plantri 10)`) can be read only once: sniffing it by reading and reopening
     lost the bytes read, or waited for ever for a writer that was gone."""
-    import os
     import threading
 
     data = (EXAMPLES / "plantri-10.pc").read_bytes()
@@ -611,7 +607,6 @@ def test_a_fifo_input_is_read_once_and_whole(runner, tmp_path, command):
 
 
 def test_a_file_name_that_is_not_utf8_is_kept_as_a_terminal_shows_it(runner, tmp_path):
-    import os
 
     path = os.path.join(os.fsencode(tmp_path), b"gr\xe4in.txt")
     with open(path, "wb") as handle:
@@ -685,7 +680,6 @@ def test_output_to_dev_stdout_appends_to_what_stdout_is(tmp_path):
 
 
 def test_sighup_ignored_by_nohup_stays_ignored(tmp_path):
-    import os
     import signal
     import time
 
