@@ -165,6 +165,7 @@ def stdin() -> BinaryIO:
 
 
 _read_once: dict[str, BinaryIO] = {}
+_stdin_read_once: dict[str, BinaryIO] = {}
 SNIFF_BYTES = 4096
 
 
@@ -185,12 +186,11 @@ def read_once(path: str) -> BinaryIO | None:
     file (or a path that is not there: its reader says so)."""
     if path == "-":
         source = stdin()
-        key = f"-{id(source)}"  # a replaced stdin (a test, an embedding program) is another
-        if key not in _read_once:
-            for stale in [k for k in _read_once if k.startswith("-")]:
-                del _read_once[stale]
-            _read_once[key] = _with_head(source, path)
-        return _read_once[key]
+        # A replaced stdin (a test, an embedding program) is another stream; the one kept here
+        # is held, so that no new one can take its id.
+        if _stdin_read_once.get("source") is not source:
+            _stdin_read_once.update(source=source, stream=_with_head(source, path))
+        return _stdin_read_once["stream"]
     if path not in _read_once:
         if not _is_stream(path):
             return None
