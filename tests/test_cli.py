@@ -586,6 +586,7 @@ def test_a_fifo_input_is_read_once_and_whole(runner, tmp_path, command):
     """A FIFO (or `<(plantri 10)`) can be read only once: sniffing it by reading and reopening
     lost the bytes read, or waited for ever for a writer that was gone."""
     import threading
+    import time
 
     data = (EXAMPLES / "plantri-10.pc").read_bytes()
     if command == "summarize-parquet":
@@ -594,7 +595,15 @@ def test_a_fifo_input_is_read_once_and_whole(runner, tmp_path, command):
         data = table.read_bytes()
     fifo = tmp_path / "fifo"
     os.mkfifo(fifo)
-    threading.Thread(target=fifo.write_bytes, args=(data,), daemon=True).start()
+
+    def write_in_two() -> None:  # a short first write: the head is read, then replayed
+        with open(fifo, "wb") as writer:
+            writer.write(data[:8])
+            writer.flush()
+            time.sleep(0.2)
+            writer.write(data[8:])
+
+    threading.Thread(target=write_in_two, daemon=True).start()
     if command == "classify":
         out = tmp_path / "out.parquet"
         result = runner.invoke(cli, ["classify", str(fifo), "-o", str(out), "-q"])

@@ -213,10 +213,17 @@ def done_reading(path: str) -> None:
 class _Replayed(io.RawIOBase):
     """``head``, then the rest of ``stream``: bytes read to sniff, given back."""
 
-    def __init__(self, head: bytes, stream: BinaryIO, ended: bool) -> None:
+    def __init__(self, head: bytes, stream: BinaryIO, ended: bool, owned: bool) -> None:
+        super().__init__()
         self._head = memoryview(head)
         self._stream = stream
         self._ended = ended  # read to its end: a terminal would wait for a second Ctrl-D
+        self._owned = owned  # closed with this one (a FIFO opened here; not standard input)
+
+    def close(self) -> None:
+        if not self.closed and self._owned:
+            self._stream.close()
+        super().close()
 
     def readable(self) -> bool:
         return True
@@ -251,7 +258,8 @@ def _with_head(stream: BinaryIO, path: str) -> BinaryIO:
             ended = not more
     except OSError as exc:
         raise InputError(path, exc.strerror or str(exc)) from None
-    return io.BufferedReader(_Replayed(bytes(read), stream, ended), 1 << 16)
+    replayed = _Replayed(bytes(read), stream, ended, owned=path != "-")
+    return io.BufferedReader(replayed, 1 << 16)
 
 
 @contextmanager
