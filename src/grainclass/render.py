@@ -129,12 +129,11 @@ def render_frame(table: pd.DataFrame, fmt: str, title: str) -> str | bytes:
         return json.dumps(_records(table), indent=2) + "\n"
     if fmt == "csv":
         return table.to_csv(index=False)
-    shown = _cells(table)
     if fmt == "markdown":
-        return f"**{title}**\n\n{_markdown(shown)}\n"
+        return f"**{title}**\n\n{_markdown(table)}\n"
     if fmt == "latex":
-        return f"% {title}\n{_latex(shown)}\n"
-    return f"{title}\n{_text(shown)}\n"
+        return f"% {title}\n{_latex(table)}\n"
+    return f"{title}\n{_text(_cells(table))}\n"
 
 
 def render(summary: Summary, tables: tuple[str, ...], fmt: str) -> str | bytes:

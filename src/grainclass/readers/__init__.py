@@ -144,28 +144,9 @@ def _expand(paths: Sequence[str]) -> list[str]:
     return expanded
 
 
-_wrapped_stdin: dict[int, BinaryIO] = {}
-
-
-def stdin() -> BinaryIO:
-    """Standard input as a binary stream that can ``peek()`` (for sniffing); a pipe gets a
-    larger buffer (:func:`enlarge_pipe`).
-
-    A replaced stdin (an embedding program, a test) may lack peek(); it is wrapped once, so that
-    every reader sees the bytes another one peeked at.
-    """
-    stream = sys.stdin.buffer
-    enlarge_pipe(stream)
-    if hasattr(stream, "peek"):
-        return stream
-    if id(stream) not in _wrapped_stdin:
-        _wrapped_stdin.clear()
-        _wrapped_stdin[id(stream)] = io.BufferedReader(stream)
-    return _wrapped_stdin[id(stream)]
-
-
 _read_once: dict[str, BinaryIO] = {}
-_stdin_read_once: dict[str, BinaryIO] = {}
+# sys.stdin.buffer as last seen, and the stream read_once("-") gives for it.
+_stdin: tuple[BinaryIO, BinaryIO] | None = None
 SNIFF_BYTES = 4096
 
 
@@ -184,13 +165,18 @@ def read_once(path: str) -> BinaryIO | None:
     into it: opened again, it would have lost what was read, or, a FIFO, wait for a writer
     that is gone. Its first SNIFF_BYTES can be peeked at (:func:`_with_head`). None for a
     file (or a path that is not there: its reader says so)."""
+    global _stdin
     if path == "-":
-        source = stdin()
-        # A replaced stdin (a test, an embedding program) is another stream; the one kept here
-        # is held, so that no new one can take its id.
-        if _stdin_read_once.get("source") is not source:
-            _stdin_read_once.update(source=source, stream=_with_head(source, path))
-        return _stdin_read_once["stream"]
+        # A replaced stdin (a test, an embedding program) is another stream: it is held here,
+        # not known by its id, so that no new one can pass for it. One without peek() is
+        # wrapped once, so that every reader sees the bytes another one peeked at; a pipe gets
+        # a larger buffer (:func:`enlarge_pipe`).
+        source = sys.stdin.buffer
+        if _stdin is None or _stdin[0] is not source:
+            enlarge_pipe(source)
+            peekable = source if hasattr(source, "peek") else io.BufferedReader(source)
+            _stdin = (source, _with_head(peekable, path))
+        return _stdin[1]
     if path not in _read_once:
         if not _is_stream(path):
             return None
@@ -333,11 +319,12 @@ def read_dataset(
         path = paths[k]
         k += 1
         with _open(path) as stream:
-            fmt = formats[k - 1] or sniff(stream.peek(SNIFF_BYTES)[:SNIFF_BYTES])
+            head = stream.peek(SNIFF_BYTES)[:SNIFF_BYTES]
+            fmt = formats[k - 1] or sniff(head)
             if fmt == "not grains":
-                raise InputError(path, _not_grains(stream.peek(8)) or "not grains")
-            if fmt != "planar_code" and stream.peek(3)[:3] == _BOM:
-                stream.read(3)
+                raise InputError(path, _not_grains(head) or "not grains")
+            if fmt != "planar_code" and head.startswith(_BOM):
+                stream.read(len(_BOM))
             if fmt == "evolver":
                 raise InputError(path, "Surface Evolver input must be a file or a folder")
             if fmt == "planar_code":
