@@ -432,11 +432,21 @@ def test_summarize_round_rows_for_n_given_twice_come_once(runner):
     assert [line.split(",")[0] for line in result.stdout.splitlines()[1:]] == ["all", "n=6", "n=12"]
 
 
+def _wait_for_its_temporary_file(run: subprocess.Popen, folder) -> None:
+    """Until the running command ``run`` has opened its output (a temporary file in ``folder``)."""
+    import time
+
+    deadline = time.monotonic() + 60
+    while not any(p.name.endswith(".tmp") for p in folder.iterdir()):
+        assert time.monotonic() < deadline
+        assert run.poll() is None
+        time.sleep(0.05)
+
+
 def test_sigterm_and_sighup_leave_no_file_and_exit_128_plus_the_signal(tmp_path):
     """A run stopped by ``timeout`` or a closed terminal cleans up as Ctrl-C does. The input is
     a pipe that stays open, so the run is still reading when the signal comes."""
     import signal
-    import time
 
     for signum in (signal.SIGTERM, signal.SIGHUP):
         out = tmp_path / "out.parquet"
@@ -447,11 +457,7 @@ def test_sigterm_and_sighup_leave_no_file_and_exit_128_plus_the_signal(tmp_path)
         )
         run.stdin.write(CUBE_LINE.encode() * 1000)
         run.stdin.flush()
-        deadline = time.monotonic() + 60
-        while not any(p.name.endswith(".tmp") for p in tmp_path.iterdir()):
-            assert time.monotonic() < deadline
-            assert run.poll() is None
-            time.sleep(0.05)
+        _wait_for_its_temporary_file(run, tmp_path)
         os.kill(run.pid, signum)
         _, err = run.communicate(timeout=60)
         assert run.returncode == 128 + signum
@@ -690,7 +696,6 @@ def test_output_to_dev_stdout_appends_to_what_stdout_is(tmp_path):
 
 def test_sighup_ignored_by_nohup_stays_ignored(tmp_path):
     import signal
-    import time
 
     out = tmp_path / "out.parquet"
     run = subprocess.Popen(
@@ -700,10 +705,7 @@ def test_sighup_ignored_by_nohup_stays_ignored(tmp_path):
     )
     run.stdin.write(CUBE_LINE.encode() * 1000)
     run.stdin.flush()
-    deadline = time.monotonic() + 60
-    while not any(p.name.endswith(".tmp") for p in tmp_path.iterdir()):
-        assert time.monotonic() < deadline
-        time.sleep(0.05)
+    _wait_for_its_temporary_file(run, tmp_path)
     os.kill(run.pid, signal.SIGHUP)
     run.stdin.close()
     assert run.wait(timeout=60) == 0

@@ -95,8 +95,7 @@ def read_planar_code(
         buf.flags.writeable = False  # the batches share it; one numba signature for all callers
         starts = np.empty(chunk_size + 1, np.int64)
         records, vertices, entries, consumed = _scan(buf, big_endian, chunk_size, starts)
-        if records == 0 and header_length(buf, 0):  # the stream's, or another's after it
-            header = header_length(buf, 0)
+        if records == 0 and (header := header_length(buf, 0)):  # this stream's or the next's
             big_endian = HEADERS[buf[:header].tobytes()]
             pos += header
             continue

@@ -53,7 +53,7 @@ def read_voro(lines: Iterable[bytes], source: str, chunk_size: int) -> Iterator[
                 raise ValueError("a face loop is not closed by ')' (a cut-off line?)")
             int(tokens[0])
             numbers = [float(t) for t in tokens[1:]] + [np.nan, np.nan]
-            if min(numbers[:2]) < 0:  # NaN compares False: absent numbers pass
+            if any(number < 0 for number in numbers[:2]):  # NaN, an absent one, is not < 0
                 raise ValueError(f"a negative volume or area ({' '.join(tokens[1:])})")
         except ValueError as exc:
             rows.add_unreadable(grain_id, line_no, f"cannot read this cell: {exc}")
