@@ -143,7 +143,25 @@ def test_a_digit_that_int_cannot_read_is_no_entry(tmp_path):
     )
     rows = _rows(path)
     assert [(r["grain_id"], r["status"]) for r in rows] == [("1", "ok"), ("2", "invalid")]
-    assert "body 2: unknown id 12" in rows[1]["error"]
+    assert "body 2: edge 15 names vertex 12, which the file does not define" in rows[1]["error"]
+
+
+@pytest.mark.parametrize(
+    ("line", "changed", "message"),
+    [
+        ("\n2\t-2 7 8", "\n2\t-2 70 8", "body 2: its list of facets names facet 70, which"),
+        ("\n7\t13\t14", "\n7\t13\t40", "body 2: facet 7 names edge 40, which"),
+        ("\n10\t2\t1\t0", "\n30\t2\t1\t0", "body 2: edge 13 names vertex 10, which"),
+    ],
+)
+def test_an_undefined_entry_is_named_with_what_refers_to_it(tmp_path, line, changed, message):
+    text = (DATA / "two_cubes.fe").read_text()
+    assert line in text
+    path = tmp_path / "undefined.fe"
+    path.write_text(text.replace(line, changed))
+    rows = _rows(path)
+    assert [(r["grain_id"], r["status"]) for r in rows] == [("1", "ok"), ("2", "invalid")]
+    assert message in rows[1]["error"]
 
 
 def test_an_id_too_long_for_int_is_an_invalid_row(tmp_path):

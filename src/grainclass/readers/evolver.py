@@ -184,11 +184,27 @@ class GrainError(ValueError):
     """A body that is not a closed surface cut into faces: its grain becomes an invalid row."""
 
 
+class _Undefined(LookupError):
+    """A body needs an entry (``section``, ``ident``) that ``user`` refers to and the file
+    lacks (or could not read): see :func:`_missing`."""
+
+    def __init__(self, section: str, ident: int, user: str) -> None:
+        super().__init__(section, ident, user)
+        self.section, self.ident, self.user = section, ident, user
+
+
 def _oriented_facet(data: _Datafile, signed: int) -> list[tuple[int, int, int]]:
     """Directed edges (tail, head, edge id) of a facet, reversed for a negative sign."""
     darts = []
-    for e in data.facets[abs(signed)]:
-        tail, head, _, _ = data.edges[abs(e)]
+    try:
+        edge_ids = data.facets[abs(signed)]
+    except KeyError:
+        raise _Undefined("facets", abs(signed), "its list of facets") from None
+    for e in edge_ids:
+        try:
+            tail, head, _, _ = data.edges[abs(e)]
+        except KeyError:
+            raise _Undefined("edges", abs(e), f"facet {abs(signed)}") from None
         darts.append((tail, head, abs(e)) if e > 0 else (head, tail, abs(e)))
     if signed < 0:
         darts = [(h, t, e) for t, h, e in reversed(darts)]
@@ -203,8 +219,8 @@ def _grain(data: _Datafile, body: int, facet_bodies: dict[int, list[int]], marke
             abs(f) for f in signed_facets if signed_facets.count(f) + signed_facets.count(-f) > 1
         )
         raise GrainError(
-            f"body {body} uses facet {twice} twice (it touches its own periodic image): "
-            "enlarge the periodic box so that every facet lies between two bodies"
+            f"body {body} lists facet {twice} twice: it touches its own periodic image (enlarge "
+            "the periodic box so that every facet lies between two bodies), or its line is cut"
         )
     facets = [_oriented_facet(data, f) for f in signed_facets]
     on_edge: dict[int, list[int]] = defaultdict(list)
@@ -316,13 +332,19 @@ def _positions(
     Breadth-first over the body's edges, each step adding the edge's vector (head plus its
     periodic shift, minus tail). Plain floats: a numpy call per vertex would cost more.
     """
-    if not any(data.edges[e][2] for darts in facets for _, _, e in darts):
-        return np.array([data.coords[v] for v in row])  # nothing wraps: stored positions
+    try:
+        if not any(data.edges[e][2] for darts in facets for _, _, e in darts):
+            return np.array([data.coords[v] for v in row])  # nothing wraps: stored positions
+    except KeyError as exc:
+        raise _undefined_vertex(facets, exc.args[0]) from None
     step: dict[int, list[tuple[int, float, float, float]]] = defaultdict(list)
     for darts in facets:
         for _, _, e in darts:
             t, h, shift, _ = data.edges[e]
-            (tx, ty, tz), (hx, hy, hz) = data.coords[t], data.coords[h]
+            try:
+                (tx, ty, tz), (hx, hy, hz) = data.coords[t], data.coords[h]
+            except KeyError as exc:
+                raise _undefined_vertex(facets, exc.args[0]) from None
             if shift is not None:
                 hx, hy, hz = hx + shift[0], hy + shift[1], hz + shift[2]
             dx, dy, dz = hx - tx, hy - ty, hz - tz
@@ -342,6 +364,12 @@ def _positions(
     for v, k in row.items():
         position[k] = placed[v]
     return position
+
+
+def _undefined_vertex(facets: list[list[tuple[int, int, int]]], vertex: int) -> _Undefined:
+    """The error for a vertex without coordinates, named with an edge that ends at it."""
+    edge = next(e for darts in facets for t, h, e in darts if vertex in (t, h))
+    return _Undefined("vertices", vertex, f"edge {edge}")
 
 
 def _unit_normals(position: np.ndarray, polygons: list[list[int]]) -> np.ndarray:
@@ -458,19 +486,18 @@ def _read_file(path: str, triple_edges: tuple[str, str]) -> list[_Grain]:
             grains.append(_Grain(grain_id, path, line, lists, volume, area, boundary))
         except GrainError as exc:
             grains.append(_Grain(grain_id, path, line, error=str(exc)))
-        except KeyError as exc:
-            grains.append(_Grain(grain_id, path, line, error=_missing(data, body, exc.args[0])))
+        except _Undefined as exc:
+            grains.append(_Grain(grain_id, path, line, error=_missing(data, body, exc)))
     return grains
 
 
-def _missing(data: _Datafile, body: int, ident: object) -> str:
+def _missing(data: _Datafile, body: int, undefined: _Undefined) -> str:
     """Why body ``body`` met an id it could not find: a line that could not be read, or none."""
-    for section in ("vertices", "edges", "facets"):
-        line = data.unreadable.get((section, ident))
-        if line is not None:
-            what = SECTIONS[section]
-            return f"body {body}: cannot read the line of its {what} {ident} (line {line})"
-    return f"body {body}: unknown id {ident}"
+    what = f"{SECTIONS[undefined.section]} {undefined.ident}"
+    line = data.unreadable.get((undefined.section, undefined.ident))
+    if line is not None:
+        return f"body {body}: cannot read the line of its {what} (line {line})"
+    return f"body {body}: {undefined.user} names {what}, which the file does not define"
 
 
 @dataclass
