@@ -587,6 +587,32 @@ def test_a_utf8_byte_order_mark_is_not_part_of_the_first_line(runner, tmp_path, 
         assert runner.invoke(cli, [*args, "-"], input=marked.read_bytes()).stdout == want.stdout
 
 
+@pytest.mark.parametrize("name", ["polytopes.txt", "voro", "neper"])
+def test_text_with_carriage_returns_alone_ending_its_lines(runner, tmp_path, name):
+    """Text saved with CR line endings (classic Mac OS) was read as one line: one grain, and
+    the others lost."""
+    from conftest import ROOT
+
+    if name == "voro":
+        text = b"1 0.5 (0,1,2) (0,2,3) (0,3,1) (1,3,2)\n2 0.5 (0,2,1) (0,3,2) (0,1,3) (1,2,3)\n"
+    elif name == "neper":
+        text = (ROOT / "tests" / "data" / "neper" / "two_cells.tess").read_bytes()
+    else:
+        text = (EXAMPLES / name).read_bytes()
+    assert b"\r" not in text
+    plain, returns = tmp_path / "plain", tmp_path / "returns"
+    plain.write_bytes(text)
+    returns.write_bytes(text.replace(b"\n", b"\r"))
+    args = ["summarize", "--format", "json", "-q"]
+    want = runner.invoke(cli, [*args, str(plain)])
+    assert want.exit_code == 0
+    headline = json.loads(want.stdout)["headline"]
+    assert headline["invalid"] == 0
+    assert headline["grains"] + headline["boundary_excluded"] > 1
+    assert runner.invoke(cli, [*args, str(returns)]).stdout == want.stdout
+    assert runner.invoke(cli, [*args, "-"], input=returns.read_bytes()).stdout == want.stdout
+
+
 @pytest.mark.parametrize("command", ["classify", "summarize", "summarize-parquet"])
 def test_a_fifo_input_is_read_once_and_whole(runner, tmp_path, command):
     """A FIFO (or `<(plantri 10)`) can be read only once: sniffing it by reading and reopening

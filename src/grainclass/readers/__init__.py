@@ -248,6 +248,23 @@ def _with_head(stream: BinaryIO, path: str) -> BinaryIO:
     return io.BufferedReader(replayed, 1 << 16)
 
 
+class _ReturnsAsNewlines(io.RawIOBase):
+    """``stream`` with every carriage return read as a newline: text saved with CR alone
+    ending its lines (classic Mac OS) would otherwise be one long line."""
+
+    def __init__(self, stream: BinaryIO) -> None:
+        super().__init__()
+        self._stream = stream
+
+    def readable(self) -> bool:
+        return True
+
+    def readinto(self, buffer) -> int:  # type: ignore[override]
+        data = self._stream.read1(len(buffer)).replace(b"\r", b"\n")
+        buffer[: len(data)] = data
+        return len(data)
+
+
 @contextmanager
 def _open(path: str) -> Iterator[BinaryIO]:
     once = read_once(path)
@@ -325,6 +342,8 @@ def read_dataset(
                 raise InputError(path, _not_grains(head) or "not grains")
             if fmt != "planar_code" and head.startswith(_BOM):
                 stream.read(len(_BOM))
+            if fmt != "planar_code" and b"\r" in head and b"\n" not in head:
+                stream = io.BufferedReader(_ReturnsAsNewlines(stream), 1 << 16)
             if fmt == "evolver":
                 raise InputError(path, "Surface Evolver input must be a file or a folder")
             if fmt == "planar_code":
