@@ -133,7 +133,21 @@ def render_frame(table: pd.DataFrame, fmt: str, title: str) -> str | bytes:
         return f"**{title}**\n\n{_markdown(table)}\n"
     if fmt == "latex":
         return f"% {title}\n{_latex(table)}\n"
-    return f"{title}\n{_text(_cells(table))}\n"
+    return f"{title}\n{_text_with_codes_last(table)}\n"
+
+
+def _text_with_codes_last(table: pd.DataFrame) -> str:
+    """Aligned text with the Weinberg codes (as long as 6n - 11 numbers) last and left-aligned,
+    where right-aligned first they pushed every other column off the screen; fractions to six
+    digits, not seventeen."""
+    shown = _cells(
+        table.assign(**{c: table[c].map("{:.6g}".format) for c in table.select_dtypes("float")})
+    )
+    if "weinberg" not in shown.columns or not len(shown):
+        return _text(shown)
+    rest = _text(shown.drop(columns="weinberg")).splitlines()
+    codes = ["weinberg", *shown["weinberg"]]
+    return "\n".join(f"{line}  {code}" for line, code in zip(rest, codes, strict=True))
 
 
 def render(summary: Summary, tables: tuple[str, ...], fmt: str) -> str | bytes:
