@@ -31,7 +31,7 @@ BAD_GRAINS = {
     "cube": ("ok", 3, None),
     "bad_token": ("invalid", 5, "'x' is not a face index"),
     "out_of_range": ("invalid", 7, "face 5 lists face 7"),
-    "asymmetric": ("invalid", 9, "asymmetric adjacency"),
+    "asymmetric": ("invalid", 9, "face 0 lists face 1 once, but face 1 does not list face 0"),
     "dodecahedron": ("ok", 11, None),
     "trihedron": ("degenerate", 13, "2-gon"),
     "shared_edges": ("degenerate", 15, "faces 0 and 1 share more than one edge"),
@@ -58,6 +58,13 @@ def test_bad_grains_file_keeps_every_grain_with_status_and_line():
             assert words in row["error"]
             assert row["class"] is None
             assert row["family"] is None
+
+
+def test_an_asymmetric_adjacency_says_which_list_has_the_extra_entry():
+    # The tetrahedron, with face 0 a second time in the list of face 3.
+    row = _row([[1, 2, 3], [0, 3, 2], [0, 1, 3], [0, 2, 1, 0]])
+    assert row["status"] == "invalid"
+    assert row["error"].endswith("face 0 lists face 3 once, but face 3 lists face 0 twice")
 
 
 def test_unordered_pentagonal_prism_classifies_like_the_ordered_one():

@@ -26,8 +26,7 @@ _MESSAGES = {
     codes.E_TOO_FEW_FACES: "{a} faces; a grain needs at least 4",
     codes.E_INDEX_RANGE: "face {a} lists face {b}, but the faces are numbered 0..{last}",
     codes.E_SELF: "face {a} lists itself as a neighbour",
-    codes.E_ASYMMETRIC: "asymmetric adjacency: face {a} lists face {b}, "
-    "but face {b} does not list face {a} as often",
+    codes.E_ASYMMETRIC: "asymmetric adjacency: face {a} lists face {b}{ab}, but face {b} {ba}",
     codes.E_FEW_NEIGHBOURS: "face {a} has {b} neighbour(s); a face needs at least 2",
     codes.E_TWO_GON: "degenerate: face {a} is a 2-gon",
     codes.E_SHARED_EDGES: "degenerate: faces {a} and {b} share more than one edge",
@@ -51,6 +50,24 @@ def _where(batch: GrainBatch, g: int) -> str:
     return f"{source}: record {batch.location[g]}"
 
 
+def _asymmetry(batch: GrainBatch, g: int, a: int, b: int) -> tuple[str, str]:
+    """How often face a lists face b, and what face b's list does about face a, in words."""
+
+    def listed(v: int, x: int) -> int:
+        face = batch.face_offsets[g] + v
+        lst = batch.neighbors[batch.nbr_offsets[face] : batch.nbr_offsets[face + 1]]
+        return int((lst == x).sum())
+
+    def times(k: int) -> str:
+        return {1: "once", 2: "twice"}.get(k, f"{k} times")
+
+    back = listed(b, a)
+    return (
+        f" {times(listed(a, b))}",
+        f"lists face {a} {times(back)}" if back else f"does not list face {a}",
+    )
+
+
 def _error_messages(batch: GrainBatch, status: np.ndarray, err: np.ndarray) -> list[str | None]:
     messages: list[str | None] = [None] * len(batch)
     n_faces = batch.n_faces
@@ -60,7 +77,8 @@ def _error_messages(batch: GrainBatch, status: np.ndarray, err: np.ndarray) -> l
             what = batch.parse_errors.get(int(g), "unreadable record")
         else:
             n = int(n_faces[g])
-            what = _MESSAGES[code].format(a=a, b=b, n=n, last=n - 1, edges=3 * n - 6)
+            ab, ba = _asymmetry(batch, int(g), a, b) if code == codes.E_ASYMMETRIC else ("", "")
+            what = _MESSAGES[code].format(a=a, b=b, n=n, last=n - 1, edges=3 * n - 6, ab=ab, ba=ba)
         messages[g] = f"{_where(batch, g)}: {what}"
     return messages
 
