@@ -34,7 +34,7 @@ _MESSAGES = {
     codes.E_TOO_MANY_EDGES: "not a sphere: {a} adjacencies, but a grain with {n} faces "
     "has at most 3n-6 = {b}",
     codes.E_EULER: "not a sphere: the neighbour lists, read as cyclic orders, "
-    "describe a surface of Euler characteristic {a}",
+    "describe a surface of Euler characteristic {a} (or they are in no cyclic order)",
     codes.E_UNORDERED: "not a simple grain ({a} adjacencies, 3n-6 = {b}) and the neighbour "
     "lists are not in cyclic order, so the corners cannot be recovered",
     codes.E_NOT_SPHERE: "not a sphere: {edges} adjacencies, but the triangles around "
