@@ -160,6 +160,64 @@ def test_types_and_summarize_refuse_a_parquet_file_that_is_not_a_grain_table(tmp
         assert f"{summary}: not a grainclass per-grain table: no column" in result.stderr
 
 
+def test_a_grain_table_saved_again_from_pandas_reads_as_before(tmp_path):
+    """pandas writes a column of None alone (``boundary`` of planar_code input) as Arrow's null
+    type: summarize crashed on it. Integer flags and float counts are taken as well."""
+    import pandas as pd
+    import pyarrow.parquet as pq
+
+    runner = CliRunner()
+    table = tmp_path / "grains.parquet"
+    assert runner.invoke(cli, ["classify", *INPUTS, "-o", str(table), "-q"]).exit_code == 0
+    frame = pd.read_parquet(table)
+    assert frame["boundary"].isna().all()
+    frame.to_parquet(tmp_path / "again.parquet")
+    assert str(pq.read_schema(tmp_path / "again.parquet").field("boundary").type) == "null"
+    frame.assign(boundary=0, n_faces=frame["n_faces"].astype(float)).to_parquet(
+        tmp_path / "retyped.parquet"
+    )
+    want = runner.invoke(cli, ["summarize", str(table), "--format", "json"])
+    assert want.exit_code == 0
+    for name in ("again", "retyped"):
+        for command in ("summarize", "types"):
+            got = runner.invoke(
+                cli, [command, str(tmp_path / f"{name}.parquet"), "--format", "json"]
+            )
+            assert got.exit_code == 0, got.output
+            original = runner.invoke(cli, [command, str(table), "--format", "json"])
+            assert got.stdout == original.stdout
+
+
+def test_a_grain_table_without_the_columns_added_later_is_summarized(tmp_path):
+    import pyarrow.parquet as pq
+
+    runner = CliRunner()
+    table = tmp_path / "grains.parquet"
+    assert runner.invoke(cli, ["classify", *INPUTS, "-o", str(table), "-q"]).exit_code == 0
+    pq.write_table(pq.read_table(table).drop(["boundary", "weinberg"]), tmp_path / "old.parquet")
+    args = ["summarize", "--format", "json"]
+    want = json.loads(runner.invoke(cli, [*args, str(table)]).stdout)
+    got = json.loads(runner.invoke(cli, [*args, str(tmp_path / "old.parquet")]).stdout)
+    assert want["headline"]["types"] == 245
+    assert got["headline"]["types"] is None  # without Weinberg vectors: not known
+    assert got["classes"] == want["classes"]
+
+
+def test_a_word_the_summaries_do_not_know_is_named(tmp_path):
+    """A status written as OK was counted as no status at all: 'ok 0', exit 0."""
+    import pandas as pd
+
+    runner = CliRunner()
+    table = tmp_path / "grains.parquet"
+    assert runner.invoke(cli, ["classify", INPUTS[0], "-o", str(table), "-q"]).exit_code == 0
+    frame = pd.read_parquet(table)
+    frame.assign(status=frame["status"].str.upper()).to_parquet(tmp_path / "upper.parquet")
+    for command in ("summarize", "types"):
+        result = runner.invoke(cli, [command, str(tmp_path / "upper.parquet")])
+        assert result.exit_code == 1
+        assert "column status holds 'OK', not one of ok, degenerate" in result.stderr
+
+
 def test_a_damaged_grain_table_is_named_not_a_traceback(tmp_path):
     table = tmp_path / "grains.parquet"
     runner = CliRunner()

@@ -11,10 +11,28 @@ from types import TracebackType
 from typing import BinaryIO
 
 import pyarrow as pa
+import pyarrow.compute as pc
 import pyarrow.parquet as pq
 
+from grainclass import schema
 from grainclass.atomic import atomic_output
 from grainclass.schema import GRAIN_ID, GRAIN_SCHEMA
+from grainclass.vocabulary import CLASSES, FAMILIES, STATUSES
+
+# Columns that earlier versions of the table lacked (types, then geometry and the boundary
+# flag): a table without them is read with them null, as a grain without the data has them.
+_ADDED_LATER = (
+    schema.WEINBERG,
+    schema.SYMMETRY,
+    schema.CHIRALITY,
+    schema.BOUNDARY,
+    schema.VOLUME,
+    schema.AREA,
+    schema.ISOPERIMETRIC,
+)
+# Columns of words that the summaries count by: a word they do not know would be counted as
+# nothing, without a sign.
+_WORDS = {schema.STATUS: STATUSES, schema.FAMILY: FAMILIES, schema.CLASS: CLASSES}
 
 
 class GrainTableWriter:
@@ -111,12 +129,41 @@ def _row_groups(path: str, source: object, columns: list[str]) -> Iterator[pa.Ta
     except (OSError, pa.ArrowInvalid) as exc:
         raise InputError(path, f"not a grainclass Parquet table ({exc})") from None
     # Asked for a column it lacks, Arrow leaves it out instead of failing.
-    missing = [name for name in columns if name not in parquet.schema_arrow.names]
+    present = [name for name in columns if name in parquet.schema_arrow.names]
+    missing = [name for name in columns if name not in present and name not in _ADDED_LATER]
     if missing:
         raise InputError(path, f"not a grainclass per-grain table: no column {', '.join(missing)}")
     for group in range(parquet.num_row_groups):
         try:
-            table = parquet.read_row_group(group, columns=columns)
+            table = parquet.read_row_group(group, columns=present)
         except (OSError, pa.ArrowInvalid) as exc:
             raise InputError(path, f"row group {group} cannot be read ({exc})") from None
-        yield table
+        yield pa.table([_column(path, table, name) for name in columns], names=columns)
+
+
+def _column(path: str, table: pa.Table, name: str) -> pa.ChunkedArray | pa.Array:
+    """Column ``name`` of a row group as grainclass writes it. A table saved again from pandas
+    may hold another type (an all-null ``boundary`` becomes Arrow's null type, 0/1 integers a
+    boolean's place): it is cast, and a column that cannot be is named."""
+    from grainclass.errors import InputError
+
+    wanted = GRAIN_SCHEMA.field(name).type if name in GRAIN_SCHEMA.names else None
+    if name not in table.column_names:
+        return pa.nulls(len(table), wanted)
+    column = table.column(name)
+    if wanted is not None and column.type != wanted:
+        try:
+            column = column.cast(wanted)
+        except (pa.ArrowInvalid, pa.ArrowNotImplementedError, pa.ArrowTypeError) as exc:
+            raise InputError(
+                path, f"column {name} holds {column.type}, not {wanted} ({exc})"
+            ) from None
+    if name in _WORDS:
+        known = pa.array(_WORDS[name])
+        unknown = pc.filter(column, pc.invert(pc.fill_null(pc.is_in(column, known), True)))
+        if len(unknown):
+            raise InputError(
+                path,
+                f"column {name} holds {unknown[0].as_py()!r}, not one of {', '.join(_WORDS[name])}",
+            )
+    return column
