@@ -399,8 +399,43 @@ def test_a_negative_volume_makes_an_unreadable_row(tmp_path):
     text.write_text("a\t1 2 3;0 3 2;0 1 3;0 2 1\tvolume=-1\nb\t1 2 3;0 3 2;0 1 3;0 2 1\tvolume=1\n")
     for path, why in (
         (voro, "a negative volume or area (-0.5)"),
-        (text, "volume='-1' is negative"),
+        (text, "volume='-1': expected a finite number, 0 or more"),
     ):
         rows = classify(next(read_dataset(str(path)))).to_pylist()
         assert [r["status"] for r in rows] == ["invalid", "ok"]
         assert rows[0]["error"].endswith(why)
+
+
+@pytest.mark.parametrize(
+    ("fields", "why"),
+    [
+        ("volume=inf", "volume='inf': expected a finite number, 0 or more"),
+        ("area=1e400", "area='1e400': expected a finite number, 0 or more"),
+        ("volume=nan", "volume='nan': expected a finite number, 0 or more"),
+        # A sphere of volume 1 has area (36 pi)^(1/3) = 4.836: no body has less.
+        ("volume=1\tarea=4.8", "volume=1 and area=4.8 cannot both be right (36 pi V^2 > S^3)"),
+        ("volume=1\tarea=0", "volume=1 and area=0 cannot both be right (36 pi V^2 > S^3)"),
+    ],
+)
+def test_a_volume_or_area_no_body_has_makes_an_unreadable_row(tmp_path, fields, why):
+    """Taken as given, they made the isoperimetric quotient infinite or larger than a ball's."""
+    text = tmp_path / "cells.txt"
+    text.write_text(f"a\t1 2 3;0 3 2;0 1 3;0 2 1\t{fields}\nb\t1 2 3;0 3 2;0 1 3;0 2 1\tarea=4.9\n")
+    rows = classify(next(read_dataset(str(text)))).to_pylist()
+    assert [r["status"] for r in rows] == ["invalid", "ok"]
+    assert rows[0]["error"].endswith(why)
+
+
+def test_a_field_that_cannot_be_read_keeps_the_others(tmp_path):
+    """One bad volume threw away the grain's other fields: with one grain a chunk, its column
+    was never made, and the warning blamed the first chunk for lacking it."""
+    text = tmp_path / "cells.txt"
+    tetrahedron = "1 2 3;0 3 2;0 1 3;0 2 1"
+    text.write_text(f"a\t{tetrahedron}\tvolume=1,5\tphase=alpha\nb\t{tetrahedron}\tphase=beta\n")
+    for chunk_size in (1, 100):
+        batches = read_dataset(str(text), chunk_size=chunk_size)
+        rows = pa.concat_tables(classify(b) for b in batches).to_pylist()
+        assert [(r["status"], r.get("phase")) for r in rows] == [
+            ("invalid", "alpha"),
+            ("ok", "beta"),
+        ]

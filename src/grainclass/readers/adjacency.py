@@ -9,6 +9,7 @@ kept as string columns.
 from __future__ import annotations
 
 import itertools
+import math
 from collections.abc import Iterable, Iterator, Sequence
 
 import numpy as np
@@ -47,15 +48,14 @@ class _Chunk:
             self.boundary.append(-1)
             return
         grain_id = fields[0].strip() if len(fields) > 1 else (line.split() or [""])[0]
-        try:
-            if len(fields) < 2:
-                raise ValueError("expected a grain id, a TAB and the faces")
-            floats, flag, values = key_values(fields[2:])
-        except ValueError as exc:
-            self.add_unreadable(line_no, grain_id, str(exc))
+        if len(fields) < 2:
+            self.add_unreadable(line_no, grain_id, "expected a grain id, a TAB and the faces")
             return
+        floats, flag, values, error = key_values(fields[2:])
         boundary = -1 if flag is None else int(flag)
-        self._append(line_no, grain_id, fields[1].encode(), floats, boundary, values, None)
+        # A field that cannot be read makes the grain unreadable; its other fields are kept.
+        faces = fields[1].encode() if error is None else b""
+        self._append(line_no, grain_id, faces, floats, boundary, values, error)
 
     def add_unreadable(self, line_no: int, grain_id: str, error: str) -> None:
         self._append(line_no, grain_id, b"", dict.fromkeys(FLOAT_KEYS, np.nan), -1, {}, error)
@@ -170,32 +170,47 @@ def parse_face_spans(
     return n_faces, degrees[:faces], neighbors[:entries], bad
 
 
-def key_values(fields: Sequence[str]) -> tuple[dict[str, float], bool | None, dict[str, str]]:
+def key_values(
+    fields: Sequence[str],
+) -> tuple[dict[str, float], bool | None, dict[str, str], str | None]:
     """The ``key=value`` fields of a grain's line (adjacency text, face loops): ``volume`` and
-    ``area`` as floats (NaN when absent), the ``boundary`` flag (None when absent) and the
-    other keys' values as strings. Raises ValueError naming the field that cannot be read.
-    Empty fields (a TAB at the end of the line) are none."""
+    ``area`` as floats (NaN when absent), the ``boundary`` flag (None when absent), the other
+    keys' values as strings, and what is wrong with the first field that cannot be read (None
+    if none): a bad field is left out, and the others are kept. Empty fields (a TAB at the end
+    of the line) are none."""
+    errors: list[str] = []
     values: dict[str, str] = {}
     for text in fields:
         if not text.strip():
             continue
         key, sep, value = text.partition("=")
         if not sep or not key.strip():
-            raise ValueError(f"field {text!r} is not key=value")
+            errors.append(f"field {text!r} is not key=value")
+            continue
         values[key.strip()] = value.strip()
     floats = {}
     for key in FLOAT_KEYS:
         number = values.pop(key, None)
+        floats[key] = np.nan
         try:
-            floats[key] = np.nan if number is None else float(number)
+            value = np.nan if number is None else float(number)
         except ValueError:
-            raise ValueError(f"{key}={number!r} is not a number") from None
-        if floats[key] < 0:
-            raise ValueError(f"{key}={number!r} is negative")
+            errors.append(f"{key}={number!r} is not a number")
+            continue
+        if value < 0 or math.isinf(value) or (number is not None and math.isnan(value)):
+            errors.append(f"{key}={number!r}: expected a finite number, 0 or more")
+            continue
+        floats[key] = value
+    volume, area = floats["volume"], floats["area"]
+    if 36 * math.pi * volume**2 > (1 + 1e-6) * area**3:  # False if either is NaN
+        errors.append(f"volume={volume:g} and area={area:g} cannot both be right (36 pi V^2 > S^3)")
+        floats["volume"] = floats["area"] = np.nan
     flag = values.pop("boundary", None)
     if flag is not None and flag.lower() not in BOOLEANS:
-        raise ValueError(f"boundary={flag!r}: expected 1/0, true/false or yes/no")
-    return floats, None if flag is None else bool(BOOLEANS[flag.lower()]), values
+        errors.append(f"boundary={flag!r}: expected 1/0, true/false or yes/no")
+        flag = None
+    boundary = None if flag is None else bool(BOOLEANS[flag.lower()])
+    return floats, boundary, values, errors[0] if errors else None
 
 
 def _faces_error(text: str) -> str:

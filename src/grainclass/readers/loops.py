@@ -188,12 +188,11 @@ def read_loops(lines: Iterable[bytes], source: str, chunk_size: int) -> Iterator
             continue
         fields = line.split("\t")
         grain_id = fields[0].strip() or f"line{line_no}"
-        try:
-            if len(fields) < 2:
-                raise ValueError("expected a grain id, a TAB and the face loops")
-            floats, boundary, _ = key_values(fields[2:])
-        except ValueError as exc:
-            rows.add_unreadable(grain_id, line_no, str(exc))
+        floats, boundary, _, error = key_values(fields[2:])
+        if len(fields) < 2:
+            rows.add_unreadable(grain_id, line_no, "expected a grain id, a TAB and the face loops")
+        elif error is not None:
+            rows.add_unreadable(grain_id, line_no, error)
         else:
             loops = fields[1].strip(" ;").encode()
             rows.add(grain_id, line_no, loops, floats["volume"], floats["area"], boundary)
