@@ -168,9 +168,11 @@ def test_a_grain_table_saved_again_from_pandas_reads_as_before(tmp_path):
 
     runner = CliRunner()
     table = tmp_path / "grains.parquet"
-    assert runner.invoke(cli, ["classify", *INPUTS, "-o", str(table), "-q"]).exit_code == 0
+    bad = str(EXAMPLES / "bad-grains.txt")  # rows without a class, and with errors
+    assert runner.invoke(cli, ["classify", *INPUTS, bad, "-o", str(table), "-q"]).exit_code == 0
     frame = pd.read_parquet(table)
     assert frame["boundary"].isna().all()
+    assert frame["class"].isna().any()
     frame.to_parquet(tmp_path / "again.parquet")
     assert str(pq.read_schema(tmp_path / "again.parquet").field("boundary").type) == "null"
     frame.assign(boundary=0, n_faces=frame["n_faces"].astype(float)).to_parquet(

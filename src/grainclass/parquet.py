@@ -160,7 +160,9 @@ def _column(path: str, table: pa.Table, name: str) -> pa.ChunkedArray | pa.Array
             ) from None
     if name in _WORDS:
         known = pa.array(_WORDS[name])
-        unknown = pc.filter(column, pc.invert(pc.fill_null(pc.is_in(column, known), True)))
+        unknown = pc.filter(
+            column, pc.and_(pc.is_valid(column), pc.invert(pc.is_in(column, known)))
+        )
         if len(unknown):
             raise InputError(
                 path,
