@@ -110,18 +110,41 @@ def iter_grain_tables(path: str, columns: list[str]) -> Iterator[pa.Table]:
     from grainclass.errors import InputError
     from grainclass.readers import done_reading, read_once
 
+    # Bytes that Python holds are released by Arrow under the GIL, and Arrow's decoding threads
+    # may release the last of them just after a row group is handed over: had the process
+    # ended then (an error at the first row group), such a thread found the interpreter
+    # finalizing and the process aborted. Arrow reads the file, or a copy of standard input,
+    # itself; only a file name that is not UTF-8, which Arrow cannot open, is read by Python,
+    # and then decoded in this thread.
+    threads = True
     try:
         once = read_once(path)
-        # Python opens a file by any name, Arrow only by one that is UTF-8.
-        source = open(path, "rb") if once is None else pa.BufferReader(once.read())  # noqa: SIM115
+        if once is not None:
+            copy = pa.BufferOutputStream()
+            copy.write(once.read())
+            source = pa.BufferReader(copy.getvalue())
+        else:
+            source = _native_file(path)
+            if source is None:
+                source, threads = open(path, "rb"), False  # noqa: SIM115 (closed below)
         done_reading(path)
     except OSError as exc:
         raise InputError(path, exc.strerror or str(exc)) from None
     with source:
-        yield from _row_groups(path, source, columns)
+        yield from _row_groups(path, source, columns, threads)
 
 
-def _row_groups(path: str, source: object, columns: list[str]) -> Iterator[pa.Table]:
+def _native_file(path: str) -> pa.NativeFile | None:
+    """The file opened by Arrow, or None where Arrow cannot open it: a name that is not UTF-8,
+    or a file it fails to open, for Python to open, or to say why not in plain words."""
+    try:
+        path.encode("utf-8")
+        return pa.OSFile(path)
+    except (UnicodeEncodeError, OSError):
+        return None
+
+
+def _row_groups(path: str, source: object, columns: list[str], threads: bool) -> Iterator[pa.Table]:
     from grainclass.errors import InputError
 
     try:
@@ -135,7 +158,7 @@ def _row_groups(path: str, source: object, columns: list[str]) -> Iterator[pa.Ta
         raise InputError(path, f"not a grainclass per-grain table: no column {', '.join(missing)}")
     for group in range(parquet.num_row_groups):
         try:
-            table = parquet.read_row_group(group, columns=present)
+            table = parquet.read_row_group(group, columns=present, use_threads=threads)
         except (OSError, pa.ArrowInvalid) as exc:
             raise InputError(path, f"row group {group} cannot be read ({exc})") from None
         yield pa.table([_column(path, table, name) for name in columns], names=columns)

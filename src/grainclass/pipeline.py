@@ -127,11 +127,10 @@ def _require_types(path: str, table: pa.Table) -> None:
     from grainclass.errors import InputError
     from grainclass.summary import untyped_grains
 
-    untyped = untyped_grains(table)
-    if untyped:
+    if untyped_grains(table):  # this row group's: the rest of the file is not read yet
         raise InputError(
             path,
-            f"{untyped} ok grain(s) without a Weinberg vector (classified with --no-types): "
+            "ok grains without a Weinberg vector (classified with --no-types): "
             "classify the input again without --no-types",
         )
 
