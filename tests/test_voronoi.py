@@ -426,6 +426,29 @@ def test_a_volume_or_area_no_body_has_makes_an_unreadable_row(tmp_path, fields, 
     assert rows[0]["error"].endswith(why)
 
 
+def test_volumes_and_areas_of_any_size_give_their_quotient(tmp_path):
+    """V^2 and S^3 overflow from V = 1e154 and S = 1e103 on (an OverflowError traceback, or
+    inf / inf), where the quotient does not: a cube of side 1e60 has Q = pi / 6."""
+    side = 1e60
+    volume, area = side**3, 6 * side**2
+    tetrahedron = "1 2 3;0 3 2;0 1 3;0 2 1"
+    text = tmp_path / "cells.txt"
+    text.write_text(
+        f"a\t{tetrahedron}\tvolume={volume!r}\tarea={area!r}\n"
+        f"b\t{tetrahedron}\tvolume=1\tarea=1e103\n"
+        f"c\t{tetrahedron}\tvolume=1e160\tarea=1e107\n"  # Q = 36 pi / 10: no body
+    )
+    voro = tmp_path / "cells.vol"
+    loops = "(0,1,2) (0,2,3) (0,3,1) (1,3,2)"
+    voro.write_text(f"1 {volume!r} {area!r} {loops}\n2 1 1e103 {loops}\n3 1e160 1e107 {loops}\n")
+    for path in (text, voro):
+        rows = classify(next(read_dataset(str(path)))).to_pylist()
+        assert [r["status"] for r in rows] == ["ok", "ok", "invalid"]
+        assert rows[0]["isoperimetric"] == pytest.approx(np.pi / 6)
+        assert rows[1]["isoperimetric"] == pytest.approx(36 * np.pi * 1e-309, rel=1e-6)
+        assert "cannot both be right" in rows[2]["error"]
+
+
 def test_a_field_that_cannot_be_read_keeps_the_others(tmp_path):
     """One bad volume threw away the grain's other fields: with one grain a chunk, its column
     was never made, and the warning blamed the first chunk for lacking it."""

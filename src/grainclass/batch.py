@@ -12,6 +12,15 @@ if TYPE_CHECKING:
     import pyarrow as pa
 
 
+def isoperimetric_quotient(volume, area):
+    """Q = 36 pi V^2 / S^3 (1 for a ball, less for any other body), for floats or arrays:
+    computed as 36 pi (V / S)^2 / S, since V^2 and S^3 overflow from V = 1e154 and S = 1e103
+    on, where the quotient of a body does not. NaN where V or S is, or both are 0."""
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        ratio = np.divide(volume, area)
+        return 36 * np.pi * ratio * ratio / area
+
+
 @dataclass(frozen=True)
 class GrainBatch:
     """Grains from one input, as CSR arrays of face adjacencies.
@@ -91,8 +100,7 @@ class GrainBatch:
         area is missing), or None when the input gives no volumes or no areas."""
         if self.volume is None or self.area is None:
             return None
-        with np.errstate(divide="ignore", invalid="ignore"):
-            return 36 * np.pi * self.volume**2 / self.area**3
+        return isoperimetric_quotient(self.volume, self.area)
 
     @classmethod
     def from_lists(

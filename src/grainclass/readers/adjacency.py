@@ -14,7 +14,7 @@ from collections.abc import Iterable, Iterator, Sequence
 
 import numpy as np
 
-from grainclass.batch import GrainBatch, offsets_from_counts, run_indices
+from grainclass.batch import GrainBatch, isoperimetric_quotient, offsets_from_counts, run_indices
 
 FLOAT_KEYS = ("volume", "area")
 BOOLEANS = {"1": 1, "true": 1, "yes": 1, "0": 0, "false": 0, "no": 0}
@@ -197,12 +197,12 @@ def key_values(
         except ValueError:
             errors.append(f"{key}={number!r} is not a number")
             continue
-        if value < 0 or math.isinf(value) or (number is not None and math.isnan(value)):
+        if number is not None and not (math.isfinite(value) and value >= 0):
             errors.append(f"{key}={number!r}: expected a finite number, 0 or more")
             continue
         floats[key] = value
     volume, area = floats["volume"], floats["area"]
-    if 36 * math.pi * volume**2 > (1 + 1e-6) * area**3:  # False if either is NaN
+    if isoperimetric_quotient(volume, area) > 1 + 1e-6:  # False with a NaN
         errors.append(f"volume={volume:g} and area={area:g} cannot both be right (36 pi V^2 > S^3)")
         floats["volume"] = floats["area"] = np.nan
     flag = values.pop("boundary", None)
