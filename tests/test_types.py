@@ -49,6 +49,24 @@ def test_types_filters_and_top():
     assert len(_types("--top", "3")) == 3
 
 
+def test_types_leaves_boundary_grains_out_as_summarize_does(tmp_path):
+    """Two cubes and two tetrahedra, one of each cut by the sample boundary."""
+    cube = "1 2 3 4;0 4 5 2;0 1 5 3;0 2 5 4;0 3 5 1;1 4 3 2"
+    tetrahedron = "1 2 3;0 3 2;0 1 3;0 2 1"
+    path = tmp_path / "cut.txt"
+    path.write_text(
+        f"a\t{cube}\tboundary=1\nb\t{cube}\nc\t{tetrahedron}\tboundary=0\n"
+        f"d\t{tetrahedron}\tboundary=yes\n"
+    )
+    runner = CliRunner()
+    for args, counts in (([], {4: 1, 6: 1}), (["--include-boundary"], {4: 2, 6: 2})):
+        result = runner.invoke(cli, ["types", str(path), "--format", "json", *args])
+        assert result.exit_code == 0, result.output
+        assert {r["n_faces"]: r["count"] for r in json.loads(result.stdout)} == counts
+        summary = runner.invoke(cli, ["summarize", str(path), "--format", "json", *args])
+        assert json.loads(summary.stdout)["headline"]["grains"] == sum(counts.values())
+
+
 def test_types_writes_vorotop_distribution(tmp_path):
     out = tmp_path / "grains.distribution"
     result = CliRunner().invoke(

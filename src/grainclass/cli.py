@@ -338,6 +338,7 @@ def summarize_cmd(
     metavar="FILE",
     help="Also write VoroTop's .distribution file: (code) total left achiral right.",
 )
+@click.option("--include-boundary", is_flag=True, help="Count grains cut by a sample boundary too.")
 @_input_options("--input-format", types=None)
 def types_cmd(
     grains: tuple[str, ...],
@@ -347,6 +348,7 @@ def types_cmd(
     output_format: str | None,
     output: str,
     vorotop: str | None,
+    include_boundary: bool,
     input_format: str,
     triple_edges: tuple[str, str],
     chunk_size: int,
@@ -357,6 +359,7 @@ def types_cmd(
 
     Each type comes with its faces, p-vector, class, split type and penalty (flag grains),
     symmetry, count and fraction. GRAINS are per-grain Parquet tables or any input classify reads.
+    Grains cut by a sample boundary are left out, as summarize leaves them.
     """
     from grainclass.errors import GrainclassError
     from grainclass.frequencies import COLUMNS, type_frequencies, vorotop_distribution
@@ -372,7 +375,10 @@ def types_cmd(
         try:
             stream = grain_tables(list(grains), COLUMNS, in_fmt, chunk_size, triple_edges)
             table = type_frequencies(
-                _progress(quiet).wrap(_after_start_up(stream)), n_faces, class_name
+                _progress(quiet).wrap(_after_start_up(stream)),
+                n_faces,
+                class_name,
+                include_boundary,
             )
         except GrainclassError as exc:
             raise click.ClickException(str(exc)) from None

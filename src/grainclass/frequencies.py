@@ -21,6 +21,7 @@ COLUMNS = [
     schema.PENALTY,
     schema.SYMMETRY,
     schema.CHIRALITY,
+    schema.BOUNDARY,
 ]
 FIRST = [schema.N_FACES, schema.P_VECTOR, schema.CLASS, schema.SPLIT_K, schema.SPLIT_M]
 FIRST += [schema.PENALTY, schema.SYMMETRY]
@@ -30,8 +31,12 @@ OUTPUT = [schema.WEINBERG, schema.N_FACES, schema.P_VECTOR, schema.CLASS, "split
 OUTPUT += [schema.PENALTY, schema.SYMMETRY, "count", *CHIRAL_COUNTS, "fraction"]
 
 
-def _count_types(grains: pa.Table, n_faces: int | None, class_name: str | None) -> pd.DataFrame:
+def _count_types(
+    grains: pa.Table, n_faces: int | None, class_name: str | None, include_boundary: bool
+) -> pd.DataFrame:
     keep = pc.equal(grains.column(schema.STATUS), "ok")
+    if not include_boundary:
+        keep = pc.and_(keep, pc.invert(pc.fill_null(grains.column(schema.BOUNDARY), False)))
     if n_faces is not None:
         keep = pc.and_(keep, pc.equal(grains.column(schema.N_FACES), n_faces))
     if class_name is not None:
@@ -51,6 +56,7 @@ def type_frequencies(
     grains: pa.Table | Iterable[pa.Table],
     n_faces: int | None = None,
     class_name: str | None = None,
+    include_boundary: bool = False,
 ) -> pd.DataFrame:
     """A frequency table of grain types, most frequent first.
 
@@ -60,6 +66,8 @@ def type_frequencies(
         Classified grains (at least the columns in ``COLUMNS``); only ok grains count.
     n_faces, class_name : optional
         Keep only grains with this number of faces, or of this class.
+    include_boundary : bool
+        Count grains cut by a sample boundary too (as ``summarize`` leaves them out).
 
     Returns
     -------
@@ -70,7 +78,7 @@ def type_frequencies(
         of all grains counted.
     """
     tables = [grains] if isinstance(grains, pa.Table) else grains
-    parts = [_count_types(table, n_faces, class_name) for table in tables]
+    parts = [_count_types(table, n_faces, class_name, include_boundary) for table in tables]
     if not parts:
         return pd.DataFrame(columns=OUTPUT)
     both = pd.concat(parts)
