@@ -462,3 +462,17 @@ def test_a_field_that_cannot_be_read_keeps_the_others(tmp_path):
             ("invalid", "alpha"),
             ("ok", "beta"),
         ]
+
+
+@pytest.mark.parametrize("box", ["1e-100", "1e200"])
+def test_a_box_past_what_floats_hold_is_a_usage_error(tmp_path, box):
+    """Its volumes, scaled back from a box of side about 1000, overflowed (a traceback)."""
+    result = CliRunner().invoke(cli, ["voronoi", "10", "--box", box, "-o", str(tmp_path / "v")])
+    assert result.exit_code == 2
+    assert "Invalid value for '--box'" in result.stderr
+
+
+def test_the_smallest_and_largest_box_fill_themselves():
+    for box in (1e-30, 1e30):
+        volume = sum(batch.volume.sum() for batch in poisson_voronoi(30, seed=1, box=box))
+        assert volume == pytest.approx(box**3, rel=1e-9)

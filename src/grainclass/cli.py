@@ -126,7 +126,12 @@ def _input_options(*format_flags: str, types: bool | None = True):
             type=click.IntRange(min=1),
             help="Threads for the compiled kernels (default: all cores).",
         ),
-        click.option("-q", "--quiet", is_flag=True, help="No progress or counts on stderr."),
+        click.option(
+            "-q",
+            "--quiet",
+            is_flag=True,
+            help="No progress on stderr, and classify's counts only if a grain is not ok.",
+        ),
     ]
     if types is not None:
         options.append(
@@ -399,7 +404,9 @@ def types_cmd(
 )
 @click.option(
     "--box",
-    type=click.FloatRange(min=0, min_open=True),
+    # Volumes are computed in a box of side about 1000 and scaled back by (L / 1000)^3, and
+    # summed: far beyond these bounds the factor or the sum leaves the range of a float.
+    type=click.FloatRange(min=1e-30, max=1e30),
     default=1.0,
     show_default=True,
     help="Side of the periodic cube.",

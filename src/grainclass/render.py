@@ -14,7 +14,9 @@ EXTENSIONS = {
     ".txt": "text",
     ".csv": "csv",
     ".md": "markdown",
+    ".markdown": "markdown",
     ".tex": "latex",
+    ".latex": "latex",
     ".json": "json",
     ".parquet": "parquet",
 }
