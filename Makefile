@@ -13,6 +13,8 @@ all: lint test
 $(STAMP): pyproject.toml
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --disable-pip-version-check -e '.[test]'
+	# plantri, shipped inside passagemath-plantri's package, beside the venv's other commands.
+	ln -sf "$$($(BIN)/python -c 'from grainclass.plantri import find_plantri; print(find_plantri())')" $(BIN)/plantri
 	touch $(STAMP)
 
 # numba's cache does not notice a change in a kernel inlined from another file (a batch kernel
