@@ -12,6 +12,7 @@ import pytest
 from conftest import EXAMPLES
 from grainclass import GrainBatch, classify, read_dataset
 from grainclass._kernels.small import STAMP_STEP, STAMPS
+from grainclass.errors import InputError
 from grainclass.readers import sniff
 from strategies import planar_code_record
 
@@ -150,6 +151,27 @@ def test_text_with_a_stray_0_byte_or_in_utf16_is_not_sniffed_as_planar_code():
     assert sniff(b"a\t1 2 3;0 3 2;0 1 3;0 2 1\x00\n") == "adjacency"
     assert sniff(line.encode("utf-16")) == "not grains"
     assert sniff(b"BZh" + line.encode()) == "adjacency"  # bzip2's magic is longer
+
+
+@pytest.mark.parametrize("encoding", ["utf-16-le", "utf-16-be"])
+def test_utf16_without_a_byte_order_mark_is_named(tmp_path, encoding):
+    """Without the mark it was read as adjacency text: every line an invalid grain, exit 0."""
+    path = tmp_path / "grains.txt"
+    path.write_bytes((EXAMPLES / "polytopes.txt").read_text().encode(encoding))
+    name = {"utf-16-le": "UTF-16LE", "utf-16-be": "UTF-16BE"}[encoding]
+    with pytest.raises(InputError, match=f"{name} text without a byte order mark"):
+        list(read_dataset(str(path)))
+
+
+def test_planar_code_with_two_byte_entries_is_no_utf16(tmp_path):
+    """Written with 2-byte entries, a small grain has every other byte 0, as UTF-16 text
+    has, but entries no text holds (the tetrahedron: 4, 2, 3)."""
+    lists = [[2, 3, 4], [1, 4, 3], [1, 2, 4], [1, 3, 2]]
+    record = b"\x00" + struct.pack("<H", 4) + b"".join(struct.pack("<4H", *f, 0) for f in lists)
+    path = tmp_path / "wide.pc"
+    path.write_bytes(record * 4)
+    assert sniff(record * 4) == "planar_code"
+    assert _table(path).column("class").to_pylist() == ["stacked"] * 4
 
 
 def test_planar_code_without_header_is_sniffed(plantri_output, tmp_path):

@@ -88,7 +88,33 @@ def _not_grains(head: bytes) -> str | None:
         except UnicodeDecodeError:
             return None
         return "UTF-16 text: save it as UTF-8 (iconv -f UTF-16 -t UTF-8 FILE)"
+    encoding = _utf16_without_mark(head)
+    if encoding:
+        return (
+            f"{encoding} text without a byte order mark: save it as UTF-8 "
+            f"(iconv -f {encoding} -t UTF-8 FILE)"
+        )
     return next((why for magic, why in _NOT_GRAINS.items() if magic.match(head)), None)
+
+
+_TEXT = frozenset(b"\t\n\r" + bytes(range(32, 127)))
+
+
+def _utf16_without_mark(head: bytes) -> str | None:
+    """``UTF-16LE`` or ``UTF-16BE`` for ASCII text so encoded without a byte order mark (every
+    other byte 0, the others printable), else None. planar_code has no such rhythm: a 0 ends a
+    list of three neighbours or more, and 2-byte entries are used for numbers past 255."""
+    sample = head[:256]
+    if len(sample) < 16:
+        return None
+    sample = sample[: len(sample) // 2 * 2]
+    for encoding, zeros, text in (
+        ("UTF-16LE", sample[1::2], sample[0::2]),
+        ("UTF-16BE", sample[0::2], sample[1::2]),
+    ):
+        if not any(zeros) and set(text) <= _TEXT:
+            return encoding
+    return None
 
 
 def _looks_like_planar_code(head: bytes) -> bool:
