@@ -278,3 +278,20 @@ def test_ctrl_c_at_a_terminal_stops_the_readers_quietly(tmp_path):
     assert run.returncode == 130
     assert "Traceback" not in err.decode()
     assert [p.name for p in tmp_path.iterdir()] == ["dump"]
+
+
+@pytest.mark.parametrize(
+    "damaged", ["7\tx13\t14\t15\t16", "7\t13\tx14\t15\t16", "7\t13\t14\t15\t16.0"]
+)
+def test_a_damaged_facet_line_is_named(tmp_path, damaged):
+    """Its ids were read up to the damage and the rest taken for attributes: the body came out
+    'not a closed surface', its line never named."""
+    text = (DATA / "two_cubes.fe").read_text()
+    line = "\n7\t13\t14\t15\t16\n"
+    assert line in text
+    path = tmp_path / "damaged.fe"
+    path.write_text(text.replace(line, f"\n{damaged}\n"))
+    number = text[: text.index(line) + 1].count("\n") + 1
+    rows = _rows(path)
+    assert [(r["grain_id"], r["status"]) for r in rows] == [("1", "ok"), ("2", "invalid")]
+    assert rows[1]["error"].endswith(f"body 2: cannot read the line of its facet 7 (line {number})")

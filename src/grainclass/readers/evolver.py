@@ -140,7 +140,10 @@ def _parse_entry(
             triple = len(tokens) > 4 and marker in f" {' '.join(tokens[3:]).lower()} "
             data.edges[ident] = (tail, head, shift, triple)
         elif section == "facets":
-            data.facets[ident] = _leading_integers(tokens[1:])
+            edges = _leading_integers(tokens[1:])
+            if len(edges) < 3:
+                raise ValueError("a facet needs three edges or more")
+            data.facets[ident] = edges
         else:
             volume = None
             lowered = [t.lower() for t in tokens]
@@ -157,12 +160,16 @@ def _parse_entry(
 
 
 def _leading_integers(tokens: list[str]) -> list[int]:
+    """The ids at the start of an entry; what follows them must be an attribute's name (a
+    ``13.0`` or a ``+`` there is a damaged id, and the line cannot be read)."""
     try:
         return [int(t) for t in tokens]
     except ValueError:  # attributes follow the ids
         out = []
         for t in tokens:
             if not t.lstrip("+-").isdecimal():
+                if not (t[0].isalpha() or t[0] == "_"):
+                    raise ValueError(f"{t!r} is neither an id nor an attribute") from None
                 break
             out.append(int(t))
         return out
