@@ -465,6 +465,59 @@ def test_sigterm_and_sighup_leave_no_file_and_exit_128_plus_the_signal(tmp_path)
         assert list(tmp_path.iterdir()) == []
 
 
+@pytest.mark.parametrize(
+    "args",
+    [
+        ["classify", "-", "-o", ""],
+        ["summarize", "-", "-o", ""],
+        ["types", "-", "--vorotop", ""],
+        ["voronoi", "5", "-o", ""],
+        ["census", "5", "-o", ""],
+    ],
+)
+def test_an_empty_output_path_is_a_usage_error(runner, args):
+    """It was ': cannot write here (Is a directory)', exit 1: an unset shell variable, say."""
+    result = runner.invoke(cli, args, input=CUBE_LINE)
+    assert result.exit_code == 2
+    assert "an empty path names no file" in result.stderr
+
+
+def test_after_the_first_stop_signal_the_others_are_ignored():
+    """timeout sends its signal to the process, then to its group: the second one cut short the
+    clean-up of the first, or ended the shutdown in a traceback."""
+    import signal
+
+    before = {s: signal.getsignal(s) for s in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP)}
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            cli_module._stop(signal.SIGINT, None)
+        assert all(signal.getsignal(s) == signal.SIG_IGN for s in before)
+        with pytest.raises(cli_module._Stopped):
+            cli_module._stop(signal.SIGTERM, None)
+    finally:
+        for signum, handler in before.items():
+            signal.signal(signum, handler)
+
+
+def test_an_interrupt_just_after_the_rename_leaves_the_whole_file(tmp_path, monkeypatch):
+    """The temporary file was renamed already: removing it failed, a traceback hid the
+    interrupt."""
+    from grainclass import atomic
+
+    rename = os.replace
+
+    def rename_then_interrupt(source, target):
+        rename(source, target)
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(atomic.os, "replace", rename_then_interrupt)
+    out = tmp_path / "out.txt"
+    with pytest.raises(KeyboardInterrupt), atomic.atomic_output(str(out)) as sink:
+        sink.write(b"whole\n")
+    assert out.read_bytes() == b"whole\n"
+    assert list(tmp_path.iterdir()) == [out]
+
+
 def test_output_through_a_symbolic_link_replaces_its_file_and_keeps_its_permissions(
     runner, tmp_path
 ):

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import contextlib
 import os
 import re
 import stat
@@ -68,7 +69,9 @@ def atomic_output(path: str, binary_stdout_ok: bool = True) -> Iterator[BinaryIO
             os.chmod(tmp, stat.S_IMODE(mode))
             os.replace(tmp, target)
     except BaseException:
-        os.unlink(tmp)
+        # Gone already when an interrupt came just after the rename: the file is whole.
+        with contextlib.suppress(FileNotFoundError):
+            os.unlink(tmp)
         raise
 
 

@@ -159,6 +159,13 @@ def _set_jobs(jobs: int | None) -> None:
         set_jobs(jobs)
 
 
+def _path(ctx: click.Context, param: click.Parameter, value: str | None) -> str | None:
+    """An output path given as an empty string names nothing (a shell variable unset, say)."""
+    if value == "":
+        raise click.BadParameter("an empty path names no file")
+    return value
+
+
 def _after_start_up(items: Iterable[T]) -> Iterator[T]:
     """``items``, with the cyclic garbage collector (off since :func:`main`) back on once the
     first has come through, or once there are none."""
@@ -191,6 +198,7 @@ def _progress(quiet: bool):
     "--output",
     required=True,
     metavar="FILE",
+    callback=_path,
     help="Parquet file to write, one row per grain; '-' writes to standard output.",
 )
 @_input_options("--format", "--input-format")
@@ -269,7 +277,14 @@ def classify_cmd(
     multiple=True,
     help="Add a round-table row for grains with N faces (repeatable).",
 )
-@click.option("-o", "--output", default="-", metavar="FILE", help="Write here instead of stdout.")
+@click.option(
+    "-o",
+    "--output",
+    default="-",
+    metavar="FILE",
+    callback=_path,
+    help="Write here instead of stdout.",
+)
 @click.option("--include-boundary", is_flag=True, help="Count grains cut by a sample boundary too.")
 @_input_options("--input-format", types=False)
 def summarize_cmd(
@@ -337,10 +352,18 @@ def summarize_cmd(
     type=click.Choice(OUTPUT_FORMATS),
     help="Output format (default: from the -o extension, else text).",
 )
-@click.option("-o", "--output", default="-", metavar="FILE", help="Write here instead of stdout.")
+@click.option(
+    "-o",
+    "--output",
+    default="-",
+    metavar="FILE",
+    callback=_path,
+    help="Write here instead of stdout.",
+)
 @click.option(
     "--vorotop",
     metavar="FILE",
+    callback=_path,
     help="Also write VoroTop's .distribution file: (code) total left achiral right.",
 )
 @click.option("--include-boundary", is_flag=True, help="Count grains cut by a sample boundary too.")
@@ -416,6 +439,7 @@ def types_cmd(
     "--output",
     required=True,
     metavar="FILE",
+    callback=_path,
     help="Adjacency text with volume= and area= per grain; *.parquet: classified grains.",
 )
 @click.option("-q", "--quiet", is_flag=True, help="No report on stderr.")
@@ -493,6 +517,7 @@ def _vertex_counts(
     "--output",
     required=True,
     metavar="DIR",
+    callback=_path,
     type=click.Path(file_okay=False),
     help="Census directory: checkpoints, then the tables (Parquet and CSV) and provenance.json.",
 )
@@ -640,8 +665,21 @@ class _Stopped(BaseException):
         self.signum = signum
 
 
+_STOPS = ("SIGINT", "SIGTERM", "SIGHUP")  # SIGTERM and SIGHUP are not on Windows
+
+
 def _stop(signum: int, frame: object) -> None:
-    raise _Stopped(signum)
+    # Stopping, the run undoes what it began (a temporary output file) and waits for its
+    # threads: a second signal (timeout sends one to the process, then one to its group; a
+    # second Ctrl-C) cut that short, or ended the interpreter's shutdown in a traceback.
+    _ignore_stops()
+    raise KeyboardInterrupt if signum == signal.SIGINT else _Stopped(signum)
+
+
+def _ignore_stops() -> None:
+    for name in _STOPS:
+        if hasattr(signal, name):
+            signal.signal(getattr(signal, name), signal.SIG_IGN)
 
 
 def main() -> None:
@@ -660,19 +698,21 @@ def main() -> None:
     # grainclass multiplies none large enough to use them.
     os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
     warnings.showwarning = _show_warning
-    for name in ("SIGTERM", "SIGHUP"):  # not on Windows
-        # One ignored already stays so: nohup ignores SIGHUP for a run to outlive its terminal.
+    for name in _STOPS:
+        # One ignored already stays so: nohup ignores SIGHUP for a run to outlive its terminal,
+        # and a shell, SIGINT for a job it starts in the background.
         if hasattr(signal, name) and signal.getsignal(getattr(signal, name)) != signal.SIG_IGN:
             signal.signal(getattr(signal, name), _stop)
     try:
         code = cli.main(standalone_mode=False)
     except click.ClickException as exc:
         exc.show()
-        sys.exit(exc.exit_code)
+        code = exc.exit_code
     except (click.Abort, KeyboardInterrupt):
         click.echo("grainclass: interrupted", err=True)
-        sys.exit(130)
+        code = 130
     except _Stopped as stop:
         click.echo(f"grainclass: stopped by {signal.Signals(stop.signum).name}", err=True)
-        sys.exit(128 + stop.signum)
+        code = 128 + stop.signum
+    _ignore_stops()  # all is done: a signal now would only end the shutdown in a traceback
     sys.exit(code if isinstance(code, int) else 0)
