@@ -92,3 +92,19 @@ def test_helper_runs_only_on_a_cold_cache_with_jobs_and_stops_when_the_run_fails
         raise KeyError("bad input")
     assert len(started) == 1
     assert started[0].returncode == -9  # killed at once, and reaped
+
+
+def test_a_helper_that_cannot_start_leaves_the_run_to_itself(monkeypatch):
+    """It only saves time: starting it failed (an interpreter this user may not run) and the
+    run failed with it, the error blamed on the output file."""
+    import grainclass.warmup as warmup
+
+    def no_process(*args, **kwargs):
+        raise PermissionError(13, "Permission denied")
+
+    monkeypatch.setattr(warmup, "cold", lambda kernel: True)
+    monkeypatch.setattr(warmup.subprocess, "Popen", no_process)
+    ran = []
+    with warmup.compiling_from_both_ends(jobs=2, types=True):
+        ran.append(True)
+    assert ran == [True]

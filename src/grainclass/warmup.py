@@ -10,6 +10,7 @@ already written there, and the two meet in the middle.
 
 from __future__ import annotations
 
+import contextlib
 import subprocess
 import sys
 from collections.abc import Iterator
@@ -42,12 +43,15 @@ def compiling_from_both_ends(jobs: int, types: bool) -> Iterator[None]:
 
     helper = None
     if jobs > 1 and cold(_weinberg_batch if types else _classify_batch):
-        helper = subprocess.Popen(
-            [sys.executable, "-m", "grainclass.warmup", *([] if types else ["--no-types"])],
-            stdin=subprocess.DEVNULL,
-            stdout=subprocess.DEVNULL,
-            stderr=subprocess.DEVNULL,
-        )
+        # No process to spare, or an interpreter this user may not run: the helper only saves
+        # time, and the run compiles everything itself.
+        with contextlib.suppress(OSError):
+            helper = subprocess.Popen(
+                [sys.executable, "-m", "grainclass.warmup", *([] if types else ["--no-types"])],
+                stdin=subprocess.DEVNULL,
+                stdout=subprocess.DEVNULL,
+                stderr=subprocess.DEVNULL,
+            )
     try:
         yield
     except BaseException:
