@@ -81,7 +81,7 @@ def main() -> int:
             print(_line("paper", [SPLIT[n][k] for k in ks]))
             print(_line("grainclass", [got_split.get(k, 0) for k in ks]))
             rnd = next(r for r in summary["round"] if r["grains"] == f"n={n}")
-            got_round = tuple(rnd[c] for c in ROUND_COLUMNS)
+            got_round = tuple(round(rnd[c], 2) for c in ROUND_COLUMNS)
             print(_line(f"all*_n={n}", ROUND_COLUMNS))
             print(_line("paper", [f"{v:.2f}" for v in ROUND_ALL[n]]))
             print(_line("grainclass", [f"{v:.2f}" for v in got_round]))

@@ -789,3 +789,18 @@ def test_sighup_ignored_by_nohup_stays_ignored(tmp_path):
     run.stdin.close()
     assert run.wait(timeout=60) == 0
     assert pq.read_table(out).num_rows == 1000
+
+
+def test_round_percentages_are_unrounded_in_json_and_shown_with_two_decimals(runner):
+    """Of the 13 examples, 7 are round0 (tests/hand_derived.py): 53.846...%. Rounded to two
+    decimals everywhere, a census lost its rare classes (0.004% read 0.00)."""
+    from hand_derived import EXPECTED
+
+    round0 = sum(grain["round_k"] == 0 for grain in EXPECTED.values())
+    assert (round0, len(EXPECTED)) == (7, 13)
+    path = str(EXAMPLES / "polytopes.txt")
+    data = json.loads(runner.invoke(cli, ["summarize", path, "--format", "json"]).stdout)
+    row = next(r for r in data["round"] if r["grains"] == "all")
+    assert row["round0"] == pytest.approx(100 * 7 / 13, rel=1e-12)
+    text = runner.invoke(cli, ["summarize", path, "--table", "round"]).stdout
+    assert text.splitlines()[-1].split()[:3] == ["all", "13", "53.85"]

@@ -357,11 +357,11 @@ def round_percentages(counts: pd.DataFrame, n_values: tuple[int, ...] = ()) -> p
         row: dict[str, object] = {"grains": label, "count": total}
         for k in ROUND_LEVELS:
             hits = int(part.loc[part[schema.ROUND_K] <= k, COUNT].sum())
-            row["round0" if k == 0 else f"round<={k}"] = (
-                round(100.0 * hits / total, 2) if total else np.nan
-            )
+            # Unrounded: text, Markdown and LaTeX show two decimals, CSV, JSON and Parquet keep
+            # what a census of millions needs (0.004% is 0.00).
+            row["round0" if k == 0 else f"round<={k}"] = 100.0 * hits / total if total else np.nan
         sc = int(part.loc[part[schema.FAMILY] == "sc", COUNT].sum())
-        row["sc"] = round(100.0 * sc / total, 2) if total else np.nan
+        row["sc"] = 100.0 * sc / total if total else np.nan
         rows.append(row)
     return pd.DataFrame(rows)
 
