@@ -47,6 +47,16 @@ def test_classify_writes_one_row_per_grain_in_input_order(runner, tmp_path):
     assert "25 grains classified (16 ok, 2 degenerate, 1 non_simple, 6 invalid)" in result.stderr
 
 
+def test_classify_names_the_layout_and_the_version_in_the_metadata(runner, tmp_path):
+    import grainclass
+
+    out = tmp_path / "g.parquet"
+    assert runner.invoke(cli, ["classify", "-", "-o", str(out)], input=CUBE_LINE).exit_code == 0
+    metadata = pq.read_schema(out).metadata
+    assert metadata[b"grainclass.version"] == grainclass.__version__.encode()
+    assert metadata[b"grainclass.schema_version"] == b"3"
+
+
 def test_classify_reads_standard_input(runner, tmp_path):
     out = tmp_path / "stdin.parquet"
     result = runner.invoke(cli, ["classify", "-", "-o", str(out)], input=CUBE_LINE * 3)

@@ -2,6 +2,8 @@
 
 import pyarrow as pa
 
+from grainclass import __version__
+
 SCHEMA_VERSION = "3"
 
 GRAIN_ID = "grain_id"
@@ -58,7 +60,7 @@ GRAIN_SCHEMA = pa.schema(
         (AREA, pa.float64()),
         (ISOPERIMETRIC, pa.float64()),
     ],
-    metadata={"grainclass.schema_version": SCHEMA_VERSION},
+    metadata={"grainclass.schema_version": SCHEMA_VERSION, "grainclass.version": __version__},
 )
 
 COLUMNS = frozenset(GRAIN_SCHEMA.names)
