@@ -528,6 +528,25 @@ def test_an_interrupt_just_after_the_rename_leaves_the_whole_file(tmp_path, monk
     assert list(tmp_path.iterdir()) == [out]
 
 
+def test_an_output_file_that_may_not_be_written_is_not_replaced(runner, tmp_path, monkeypatch):
+    """A results file made read-only was replaced (renaming needs only the folder's
+    permission), where the shell's > refuses it. Root may write any file: os.access says so,
+    and here it is asked to say no."""
+    from grainclass import atomic
+
+    kept = tmp_path / "kept.parquet"
+    kept.write_bytes(b"results")
+    kept.chmod(0o444)
+    access = os.access
+    monkeypatch.setattr(
+        atomic.os, "access", lambda p, m: access(p, m) and not (p == str(kept) and m == os.W_OK)
+    )
+    result = runner.invoke(cli, ["classify", "-", "-o", str(kept)], input=CUBE_LINE)
+    assert result.exit_code == 1
+    assert f"{kept}: cannot write here (Permission denied)" in result.stderr
+    assert kept.read_bytes() == b"results"
+
+
 def test_output_through_a_symbolic_link_replaces_its_file_and_keeps_its_permissions(
     runner, tmp_path
 ):

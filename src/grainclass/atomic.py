@@ -28,7 +28,8 @@ def atomic_output(path: str, binary_stdout_ok: bool = True) -> Iterator[BinaryIO
     names something other than a file (``/dev/null``, a FIFO), or one of the process's own
     open files (``/dev/stdout``, ``/dev/fd/3``), is written through as it goes, as a shell's
     redirection would: renaming over it would replace the device, the pipe or the file.
-    Replacing a file keeps its permissions. An OSError in the block becomes an OutputError,
+    Replacing a file keeps its permissions, and a file that may not be written is not
+    replaced. An OSError in the block becomes an OutputError,
     except a BrokenPipeError (the reader went away), which callers end quietly on.
     """
     if path == "-":
@@ -49,6 +50,10 @@ def atomic_output(path: str, binary_stdout_ok: bool = True) -> Iterator[BinaryIO
         with _as_output_error(path), open(path, "ab") as sink:
             yield sink
         return
+    if mode is not None and not os.access(path, os.W_OK):
+        # A file made read-only to keep it is refused, as the shell's > refuses it: renaming
+        # over it would need only the folder's permission.
+        raise OutputError(f"{path}: cannot write here (Permission denied)")
     target = os.path.realpath(path)
     try:
         fd, tmp = tempfile.mkstemp(
