@@ -668,18 +668,20 @@ class _Stopped(BaseException):
 _STOPS = ("SIGINT", "SIGTERM", "SIGHUP")  # SIGTERM and SIGHUP are not on Windows
 
 
+_stopping = False  # set by the first stop signal, and once all is done
+
+
 def _stop(signum: int, frame: object) -> None:
     # Stopping, the run undoes what it began (a temporary output file) and waits for its
     # threads: a second signal (timeout sends one to the process, then one to its group; a
-    # second Ctrl-C) cut that short, or ended the interpreter's shutdown in a traceback.
-    _ignore_stops()
+    # second Ctrl-C) cut that short, or, once all was done, ended the interpreter's shutdown
+    # in a traceback. Later signals are let go here, not set to be ignored: processes started
+    # from here on (a test's, say) would inherit that.
+    global _stopping
+    if _stopping:
+        return
+    _stopping = True
     raise KeyboardInterrupt if signum == signal.SIGINT else _Stopped(signum)
-
-
-def _ignore_stops() -> None:
-    for name in _STOPS:
-        if hasattr(signal, name):
-            signal.signal(getattr(signal, name), signal.SIG_IGN)
 
 
 def main() -> None:
@@ -714,5 +716,6 @@ def main() -> None:
     except _Stopped as stop:
         click.echo(f"grainclass: stopped by {signal.Signals(stop.signum).name}", err=True)
         code = 128 + stop.signum
-    _ignore_stops()  # all is done: a signal now would only end the shutdown in a traceback
+    global _stopping
+    _stopping = True  # all is done: a signal now would only end the shutdown in a traceback
     sys.exit(code if isinstance(code, int) else 0)
