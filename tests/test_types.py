@@ -44,6 +44,8 @@ def test_types_filters_and_top():
     assert [(r["weinberg"], r["class"], r["split"], r["penalty"]) for r in cube] == [
         (CUBE_CODE, "flag", "1:1", 18)
     ]
+    # The tetrahedron is stacked: no split type and no penalty, both null alike.
+    assert [(r["split"], r["penalty"]) for r in _types("--n", "4")] == [(None, None)]
     flags10 = _types("--n", "10", "--class", "flag")
     assert len(flags10) == 10  # Table II: 10 flag triangulations with n = 10
     assert len(_types("--top", "3")) == 3

@@ -88,7 +88,7 @@ def type_frequencies(
     table["fraction"] = table["count"] / table["count"].sum()
     split = table[schema.SPLIT_K].astype("Int64").astype(str) + ":"
     split += table[schema.SPLIT_M].astype("Int64").astype(str)
-    table.insert(3, "split", split.where(table[schema.SPLIT_K].notna(), ""))
+    table.insert(3, "split", split.where(table[schema.SPLIT_K].notna(), None))
     table = table.drop(columns=[schema.SPLIT_K, schema.SPLIT_M])
     table[[schema.PENALTY, schema.SYMMETRY]] = table[[schema.PENALTY, schema.SYMMETRY]].astype(
         "Int64"
