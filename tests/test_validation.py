@@ -436,3 +436,23 @@ TWICE_AROUND = [[1, 4, 5], [0, 5, 4, 2], [1, 4, 3], [0, 2, 4], [0, 3, 2, 1, 5], 
 def test_what_only_the_repeat_and_range_checks_reject_is_invalid(lists):
     assert len(planar_code_record(lists)) == 7 * len(lists) - 11
     assert _statuses([OCTAHEDRON, lists]) == (["ok", "invalid"], ["invalid", "ok"])
+
+
+def test_evolver_text_with_carriage_returns_alone_is_sniffed():
+    from conftest import ROOT
+
+    text = (ROOT / "tests" / "data" / "evolver" / "two_cubes.fe").read_bytes()
+    assert sniff(text[:4096].replace(b"\n", b"\r")) == "evolver"
+
+
+def test_the_quotient_of_one_grain_is_the_quotient_of_the_arrays():
+    import numpy as np
+
+    from grainclass.batch import isoperimetric_quotient
+
+    pairs = [(1.0, 6.0), (1e160, 1e107), (0.0, 0.0), (1.0, 0.0), (0.0, 2.0), (float("nan"), 1.0)]
+    arrays = isoperimetric_quotient(
+        np.array([v for v, _ in pairs]), np.array([s for _, s in pairs])
+    )
+    single = [isoperimetric_quotient(v, s) for v, s in pairs]
+    np.testing.assert_allclose(single, arrays, rtol=1e-15)

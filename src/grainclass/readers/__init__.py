@@ -69,6 +69,8 @@ def sniff(head: bytes) -> str:
     if _not_grains(head):
         return "not grains"
     head = head.removeprefix(_BOM)
+    if b"\r" in head and b"\n" not in head:  # lines ended by CR alone (classic Mac OS)
+        head = head.replace(b"\r", b"\n")
     if _looks_like_planar_code(head):
         return "planar_code"
     if _EVOLVER.search(head):

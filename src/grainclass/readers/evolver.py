@@ -367,6 +367,8 @@ def _positions(
             if w not in placed:
                 placed[w] = (x + dx, y + dy, z + dz)
                 queue.append(w)
+    if len(placed) != len(row):  # V - E + F = 2 of two pieces (a sphere and a torus, say)
+        raise GrainError("not a sphere: the surface is in more than one piece")
     position = np.empty((len(row), 3))
     for v, k in row.items():
         position[k] = placed[v]
