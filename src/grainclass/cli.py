@@ -166,6 +166,20 @@ def _path(ctx: click.Context, param: click.Parameter, value: str | None) -> str 
     return value
 
 
+# The options summarize and types share (each use makes its own click.Option).
+_STDOUT_OR_FILE = click.option(
+    "-o",
+    "--output",
+    default="-",
+    metavar="FILE",
+    callback=_path,
+    help="Write here instead of stdout.",
+)
+_INCLUDE_BOUNDARY = click.option(
+    "--include-boundary", is_flag=True, help="Count grains cut by a sample boundary too."
+)
+
+
 def _after_start_up(items: Iterable[T]) -> Iterator[T]:
     """``items``, with the cyclic garbage collector (off since :func:`main`) back on once the
     first has come through, or once there are none."""
@@ -277,15 +291,8 @@ def classify_cmd(
     multiple=True,
     help="Add a round-table row for grains with N faces (repeatable).",
 )
-@click.option(
-    "-o",
-    "--output",
-    default="-",
-    metavar="FILE",
-    callback=_path,
-    help="Write here instead of stdout.",
-)
-@click.option("--include-boundary", is_flag=True, help="Count grains cut by a sample boundary too.")
+@_STDOUT_OR_FILE
+@_INCLUDE_BOUNDARY
 @_input_options("--input-format", types=False)
 def summarize_cmd(
     grains: tuple[str, ...],
@@ -352,21 +359,14 @@ def summarize_cmd(
     type=click.Choice(OUTPUT_FORMATS),
     help="Output format (default: from the -o extension, else text).",
 )
-@click.option(
-    "-o",
-    "--output",
-    default="-",
-    metavar="FILE",
-    callback=_path,
-    help="Write here instead of stdout.",
-)
+@_STDOUT_OR_FILE
 @click.option(
     "--vorotop",
     metavar="FILE",
     callback=_path,
     help="Also write VoroTop's .distribution file: (code) total left achiral right.",
 )
-@click.option("--include-boundary", is_flag=True, help="Count grains cut by a sample boundary too.")
+@_INCLUDE_BOUNDARY
 @_input_options("--input-format", types=None)
 def types_cmd(
     grains: tuple[str, ...],
