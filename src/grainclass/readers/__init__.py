@@ -69,7 +69,7 @@ def sniff(head: bytes) -> str:
     if _not_grains(head):
         return "not grains"
     head = head.removeprefix(_BOM)
-    if b"\r" in head and b"\n" not in head:  # lines ended by CR alone (classic Mac OS)
+    if _returns_alone(head):
         head = head.replace(b"\r", b"\n")
     if _looks_like_planar_code(head):
         return "planar_code"
@@ -80,6 +80,11 @@ def sniff(head: bytes) -> str:
     if looks_like_neper(head):
         return "neper"
     return "adjacency"
+
+
+def _returns_alone(head: bytes) -> bool:
+    """Text whose lines end in a carriage return alone, as classic Mac OS saved it."""
+    return b"\r" in head and b"\n" not in head
 
 
 def _not_grains(head: bytes) -> str | None:
@@ -370,7 +375,7 @@ def read_dataset(
                 raise InputError(path, _not_grains(head) or "not grains")
             if fmt != "planar_code" and head.startswith(_BOM):
                 stream.read(len(_BOM))
-            if fmt != "planar_code" and b"\r" in head and b"\n" not in head:
+            if fmt != "planar_code" and _returns_alone(head):
                 stream = io.BufferedReader(_ReturnsAsNewlines(stream), 1 << 16)
             if fmt == "evolver":
                 raise InputError(path, "Surface Evolver input must be a file or a folder")
