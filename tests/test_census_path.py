@@ -222,7 +222,7 @@ def test_batches_keep_their_bytes_while_buffers_are_reused(plantri_output, monke
 
 
 def test_a_pipe_written_in_small_pieces_reads_as_the_whole_stream(plantri_output, monkeypatch):
-    # From a pipe, reads that find it nearly empty wait for more to gather (readers/pipes.py).
+    # From a pipe, reads that find it nearly empty wait for more to gather (pipes.py).
     # A writer that sends 1 to 4,000 bytes at a time, pausing now and then, across records and
     # across the reader's blocks, must give the records a file gives, and the last record, cut
     # off, must still come out as an unreadable grain.
@@ -230,7 +230,7 @@ def test_a_pipe_written_in_small_pieces_reads_as_the_whole_stream(plantri_output
     import time
 
     import grainclass.readers.planar_code as reader
-    from grainclass.readers.pipes import gathers_reads
+    from grainclass.pipes import gathers_reads
 
     data = plantri_output(10).read_bytes()[:-5]
     monkeypatch.setattr(reader, "BLOCK_BYTES", 3000)
@@ -289,7 +289,7 @@ def test_group_rows_hash_table_grows_past_its_first_size():
 def test_pipes_are_read_with_a_larger_buffer(tmp_path):
     import fcntl
 
-    from grainclass.readers.pipes import PIPE_BYTES, enlarge_pipe, gathers_reads
+    from grainclass.pipes import PIPE_BYTES, enlarge_pipe, gathers_reads
 
     read_end, write_end = os.pipe()
     with os.fdopen(read_end, "rb") as reader, os.fdopen(write_end, "wb"):
@@ -310,7 +310,7 @@ def test_a_larger_pipe_is_never_shrunk(monkeypatch):
     # stand-in for fcntl that reports 4 MB and records every change asked of it.
     import fcntl
 
-    from grainclass.readers.pipes import PIPE_BYTES, enlarge_pipe
+    from grainclass.pipes import PIPE_BYTES, enlarge_pipe
 
     changes = []
 
@@ -331,7 +331,7 @@ def test_reads_wait_to_gather_only_from_a_pipe_that_holds_enough(monkeypatch):
     # A 64 kB pipe fills long before a 2 ms wait ends: waiting would hold the writer up.
     import fcntl
 
-    import grainclass.readers.pipes as pipes
+    import grainclass.pipes as pipes
 
     real_fcntl = fcntl.fcntl
 

@@ -110,7 +110,7 @@ def count_part(part: Part, chunk_size: int, plantri: str | None = None) -> PartR
     """
     from grainclass.parallel import set_jobs
     from grainclass.pipeline import prefetch
-    from grainclass.readers.pipes import enlarge_pipe
+    from grainclass.pipes import enlarge_pipe
     from grainclass.readers.planar_code import read_planar_code
     from grainclass.summary import merge_tallies, tally_batch
 

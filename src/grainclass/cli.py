@@ -199,6 +199,15 @@ def _resume_collection() -> None:
         gc.enable()
 
 
+def _read_ahead(inputs: Iterable[str]) -> None:
+    """Standard input, if it is an input and a pipe, is read from now on, while the libraries
+    load (:class:`grainclass.pipes.ReadAhead`)."""
+    if "-" in inputs:
+        from grainclass.pipes import read_ahead
+
+        read_ahead(sys.stdin.buffer)
+
+
 def _progress(quiet: bool):
     from grainclass.pipeline import Progress
 
@@ -235,6 +244,7 @@ def classify_cmd(
     sniffed from the content; face-vertex loops must be named (--format loops). '-' reads
     standard input, e.g. `plantri 12 | grainclass classify - -o all12.parquet`.
     """
+    _read_ahead(inputs)
     from grainclass.errors import GrainclassError
     from grainclass.parquet import GrainTableWriter
     from grainclass.pipeline import classified_tables
@@ -316,6 +326,7 @@ def summarize_cmd(
     percentage of faces that are triangles and the number of distinct types (from Parquet
     files that have them, or from raw inputs with --types).
     """
+    _read_ahead(grains)
     from grainclass.errors import GrainclassError
     from grainclass.pipeline import tallies
     from grainclass.render import EXTENSIONS, render
@@ -389,6 +400,7 @@ def types_cmd(
     symmetry, count and fraction. GRAINS are per-grain Parquet tables or any input classify reads.
     Grains cut by a sample boundary are left out, as summarize leaves them.
     """
+    _read_ahead(grains)
     from grainclass.errors import GrainclassError
     from grainclass.frequencies import COLUMNS, type_frequencies, vorotop_distribution
     from grainclass.pipeline import grain_tables

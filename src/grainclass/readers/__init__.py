@@ -19,11 +19,11 @@ from typing import BinaryIO
 from grainclass import DEFAULT_CHUNK_SIZE
 from grainclass.batch import GrainBatch
 from grainclass.errors import EmptyInputWarning, InputError
+from grainclass.pipes import PIPE_BYTES, enlarge_pipe, reading_ahead
 from grainclass.readers.adjacency import read_adjacency
 from grainclass.readers.evolver import DEFAULT_TRIPLE_EDGES, read_evolver
 from grainclass.readers.loops import read_loops
 from grainclass.readers.neper import looks_like_neper, read_neper
-from grainclass.readers.pipes import enlarge_pipe
 from grainclass.readers.planar_code import PlanarCodeRecords, read_planar_code
 from grainclass.readers.voro import looks_like_voro, read_voro
 from grainclass.vocabulary import INPUT_FORMATS
@@ -206,8 +206,12 @@ def read_once(path: str) -> BinaryIO | None:
         # a larger buffer (:func:`enlarge_pipe`).
         source = sys.stdin.buffer
         if _stdin is None or _stdin[0] is not source:
-            enlarge_pipe(source)
-            peekable = source if hasattr(source, "peek") else io.BufferedReader(source)
+            ahead = reading_ahead(source)
+            if ahead is not None:
+                peekable = io.BufferedReader(ahead, PIPE_BYTES)
+            else:
+                enlarge_pipe(source)
+                peekable = source if hasattr(source, "peek") else io.BufferedReader(source)
             _stdin = (source, _with_head(peekable, path))
         return _stdin[1]
     if path not in _read_once:

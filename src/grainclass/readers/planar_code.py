@@ -11,7 +11,7 @@ from typing import BinaryIO
 import numpy as np
 
 from grainclass.batch import GrainBatch
-from grainclass.readers.pipes import GATHER_SECONDS, SHORT_READ_BYTES, gathers_reads
+from grainclass.pipes import GATHER_SECONDS, SHORT_READ_BYTES, gathers_reads
 
 HEADERS = {
     b">>planar_code<<": False,
@@ -155,7 +155,7 @@ class _BufferPool:
 
         With ``gather`` (a large pipe), a read that finds it nearly empty is followed by a short
         wait, so that the next read takes what the writer wrote meanwhile in one piece (see
-        :mod:`grainclass.readers.pipes`).
+        :mod:`grainclass.pipes`).
         """
         owner = self._take(len(rest) + BLOCK_BYTES)
         owner[: len(rest)] = rest

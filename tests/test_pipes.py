@@ -1,0 +1,118 @@
+"""Standard input read ahead (:class:`grainclass.pipes.ReadAhead`): the writer goes on while
+grainclass starts up, and the reader gets exactly the bytes written, in order."""
+
+import os
+import random
+import subprocess
+import sys
+import threading
+
+import pytest
+
+from grainclass.pipes import PIPE_BYTES, ReadAhead, read_ahead, reading_ahead
+
+pytestmark = pytest.mark.skipif(sys.platform == "win32", reason="POSIX pipes")
+
+
+def _writer(fd: int, data: bytes, pieces: random.Random) -> threading.Thread:
+    """A thread writing ``data`` into ``fd`` in pieces of random sizes, then closing it."""
+
+    def write() -> None:
+        with os.fdopen(fd, "wb", buffering=0) as out:
+            at = 0
+            while at < len(data):
+                size = pieces.randint(1, 70_000)
+                out.write(data[at : at + size])
+                at += size
+
+    thread = threading.Thread(target=write)
+    thread.start()
+    return thread
+
+
+def _read_all(stream: ReadAhead, pieces: random.Random) -> bytes:
+    got = bytearray()
+    while True:
+        buffer = bytearray(pieces.randint(1, 3 * PIPE_BYTES))
+        n = stream.readinto(buffer)
+        if not n:
+            return bytes(got)
+        got += buffer[:n]
+
+
+@pytest.mark.parametrize("limit", [1, 5_000, 1 << 28])
+def test_the_reader_gets_every_byte_in_order(limit):
+    # Any limit, down to one byte ahead: a read-ahead that holds what it may not lose bytes.
+    pieces = random.Random(limit)
+    data = random.Random(7).randbytes(3 * PIPE_BYTES + 12_345)
+    read_end, write_end = os.pipe()
+    writer = _writer(write_end, data, pieces)
+    stream = ReadAhead(read_end, gather=False, limit=limit)
+    assert _read_all(stream, pieces) == data
+    assert stream.readinto(bytearray(10)) == 0  # at the end it stays there
+    writer.join()
+    os.close(read_end)
+
+
+def test_the_writer_is_not_kept_waiting_before_the_first_read():
+    # Three times what a pipe holds is written and the pipe closed before anything is read,
+    # as plantri goes on writing while grainclass imports its libraries.
+    data = bytes(range(256)) * (3 * PIPE_BYTES // 256)
+    read_end, write_end = os.pipe()
+    stream = ReadAhead(read_end, gather=True)
+    writer = _writer(write_end, data, random.Random(1))
+    writer.join(timeout=60)
+    assert not writer.is_alive()
+    assert _read_all(stream, random.Random(2)) == data
+    os.close(read_end)
+
+
+def test_the_read_ahead_stops_at_its_limit():
+    # Past the limit the thread reads no more: the pipe fills up and the writer waits.
+    read_end, write_end = os.pipe()
+    stream = ReadAhead(read_end, gather=False, limit=PIPE_BYTES)
+    writer = _writer(write_end, bytes(20 * PIPE_BYTES), random.Random(3))
+    writer.join(timeout=2)
+    assert writer.is_alive()
+    assert len(_read_all(stream, random.Random(4))) == 20 * PIPE_BYTES
+    writer.join()
+    os.close(read_end)
+
+
+def test_a_read_error_reaches_the_reader(tmp_path):
+    fd = os.open(tmp_path, os.O_RDONLY)  # reading a folder fails: EISDIR
+    try:
+        with pytest.raises(IsADirectoryError):
+            ReadAhead(fd, gather=False).readinto(bytearray(10))
+    finally:
+        os.close(fd)
+
+
+def test_only_a_pipe_is_read_ahead(tmp_path):
+    path = tmp_path / "file"
+    path.write_bytes(b"4 2 3 4")
+    with path.open("rb") as regular:
+        assert read_ahead(regular) is None
+        assert reading_ahead(regular) is None
+    read_end, write_end = os.pipe()
+    with os.fdopen(read_end, "rb") as pipe:
+        os.close(write_end)
+        ahead = read_ahead(pipe)
+        assert isinstance(ahead, ReadAhead)
+        assert read_ahead(pipe) is ahead  # started once
+        assert reading_ahead(pipe) is ahead
+
+
+def test_standard_input_read_ahead_summarizes_as_the_file(tmp_path, plantri):
+    # The command line reads a pipe ahead of use (cli._read_ahead): what it counts is what the
+    # same records give from a file.
+    path = tmp_path / "p11.pc"
+    subprocess.run([plantri, "11", str(path)], check=True, capture_output=True)
+    command = [sys.executable, "-m", "grainclass", "summarize", "--format", "csv", "-q"]
+    from_file = subprocess.run([*command, str(path)], check=True, capture_output=True)
+    with path.open("rb") as data:
+        piped = subprocess.Popen([*command, "-"], stdin=subprocess.PIPE, stdout=subprocess.PIPE)
+        out, _ = piped.communicate(data.read())
+    assert piped.returncode == 0
+    assert out == from_file.stdout
+    assert b"1249" in out  # plantri 11's triangulations, Table I
