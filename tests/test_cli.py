@@ -57,6 +57,20 @@ def test_classify_names_the_layout_and_the_version_in_the_metadata(runner, tmp_p
     assert metadata[b"grainclass.schema_version"] == b"3"
 
 
+def test_row_groups_have_statistics_to_filter_by_but_not_of_free_text(runner, tmp_path):
+    # A query by faces or class skips row groups by their least and greatest values; a grain's
+    # id, message, forest and Weinberg vector are no use so.
+    out = tmp_path / "g.parquet"
+    args = ["classify", str(EXAMPLES / "plantri-10.pc"), "-o", str(out)]
+    assert runner.invoke(cli, args).exit_code == 0
+    group = pq.ParquetFile(out).metadata.row_group(0)
+    stats = {group.column(i).path_in_schema: group.column(i).statistics for i in range(group.num_columns)}
+    assert stats["n_faces"].min == stats["n_faces"].max == 10
+    assert stats["class"].has_min_max and stats["source"].has_min_max
+    for name in ("grain_id", "error", "trees", "weinberg"):
+        assert stats[name] is None
+
+
 def test_classify_reads_standard_input(runner, tmp_path):
     out = tmp_path / "stdin.parquet"
     result = runner.invoke(cli, ["classify", "-", "-o", str(out)], input=CUBE_LINE * 3)

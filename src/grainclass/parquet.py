@@ -30,6 +30,8 @@ _ADDED_LATER = (
     schema.AREA,
     schema.ISOPERIMETRIC,
 )
+# Columns of text that is all but unique to its grain: no statistics are written for them.
+_FREE_TEXT = frozenset({GRAIN_ID, schema.ERROR, schema.TREES, schema.WEINBERG})
 # Columns of words that the summaries count by: a word they do not know would be counted as
 # nothing, without a sign.
 _WORDS = {schema.STATUS: STATUSES, schema.FAMILY: FAMILIES, schema.CLASS: CLASSES}
@@ -83,8 +85,15 @@ class GrainTableWriter:
         # Grain ids are unique: a dictionary for them only grows until Parquet gives it up,
         # which cost 40% of the writing (all other columns keep theirs).
         dictionary = [name for name in schema.names if name != GRAIN_ID]
+        # Nor is a row group's least and greatest id, message, forest or Weinberg vector of use
+        # to a query; computing them took 7-8% of the writing at n = 16.
+        statistics = [name for name in schema.names if name not in _FREE_TEXT]
         self._writer = pq.ParquetWriter(
-            self._sink, schema, compression="zstd", use_dictionary=dictionary
+            self._sink,
+            schema,
+            compression="zstd",
+            use_dictionary=dictionary,
+            write_statistics=statistics,
         )
 
     def __exit__(
