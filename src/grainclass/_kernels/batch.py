@@ -32,7 +32,7 @@ from grainclass._kernels.trees import (
     _parents_from_links,
 )
 from grainclass._kernels.validate import _validate
-from grainclass._numba import njit
+from grainclass._numba import njit, njit_leaf
 
 
 @njit
@@ -76,7 +76,7 @@ def _classify_general(n, off, nb, strings, err, out, at, result, belts):
         _four_belts(n, off, nb, adj, belts)
 
 
-@njit
+@njit_leaf
 def _roots_small(alive, n, link):
     """Number of truncation trees: removed faces whose link holds no removed face."""
     removed = ~alive & ((ONE << np.uint64(n)) - ONE if n < 64 else ~ZERO)

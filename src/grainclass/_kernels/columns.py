@@ -2,7 +2,7 @@
 
 import numpy as np
 
-from grainclass._numba import at, njit
+from grainclass._numba import at, njit, njit_leaf
 
 
 @njit
@@ -87,7 +87,7 @@ def _digits(v):
     return digits
 
 
-@njit
+@njit_leaf
 def _write_digits(data, p, v):
     """Write the non-negative integer v in decimal at ``data[p:]``; returns the end."""
     end = p + _digits(v)

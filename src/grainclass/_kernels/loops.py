@@ -8,7 +8,7 @@ indexed by pairs of corners are allocated once per call and cleared after each g
 
 import numpy as np
 
-from grainclass._numba import njit
+from grainclass._numba import njit, njit_leaf
 
 # Flags per grain.
 BAD_CORNER = 1  # a corner not on exactly three faces
@@ -29,7 +29,7 @@ def _tables(size):
     )
 
 
-@njit
+@njit_leaf
 def _grain_adjacency(f0, f1, loop_offsets, corners, size, tables, nbr_offsets, neighbors, m, bad):
     """Neighbour lists of faces ``f0:f1`` (face f has the corners
     ``corners[loop_offsets[f]:loop_offsets[f + 1]]``, all below ``size``), written to
@@ -89,7 +89,7 @@ def _grain_adjacency(f0, f1, loop_offsets, corners, size, tables, nbr_offsets, n
     return m, flag
 
 
-@njit
+@njit_leaf
 def _clear(f0, f1, loop_offsets, corners, size, tables):
     """Reset what :func:`_grain_adjacency` wrote for faces ``f0:f1``."""
     first, second, count, _, on_faces = tables

@@ -10,10 +10,10 @@ makes :func:`_validate_small` say no, and the general path of ``validate.py``,
 import numpy as np
 
 from grainclass._kernels.bits import ONE, ZERO, bit, full, lowest, popcount
-from grainclass._numba import at, njit
+from grainclass._numba import at, njit, njit_leaf
 
 
-@njit
+@njit_leaf
 def _component(adj, start, allowed):
     """The vertices of ``allowed`` reachable from the bitset ``start`` within ``allowed``."""
     comp = start
@@ -106,7 +106,7 @@ def _verdict(n, adj, indices, bad, listed, closed, reached, triangular):
     return _connected(adj, reached, n), triangular
 
 
-@njit
+@njit_leaf
 def _validate_small(n, nbr_offsets, neighbors, f0, adj, following, stamp):
     """``(ok, triangular)``: ok if grain (faces from ``f0``) is certainly a simple grain with
     consistent cyclic lists, and then the bitset of its triangular faces (its dual's degree-3
@@ -155,7 +155,7 @@ def _validate_small(n, nbr_offsets, neighbors, f0, adj, following, stamp):
     return _verdict(n, adj, indices, bad, listed, closed, reached, triangular)
 
 
-@njit
+@njit_leaf
 def _validate_record(buf, p, n, adj, following, stamp):
     """:func:`_validate_small` reading a planar_code record of 1-byte entries in place: the
     lists of faces 0..n-1 start at ``buf[p]``, 1-based, each ended by a 0, with 6n - 12 entries
@@ -192,7 +192,7 @@ def _validate_record(buf, p, n, adj, following, stamp):
     return _verdict(n, adj, indices, bad, listed, closed, reached, triangular)
 
 
-@njit
+@njit_leaf
 def _reduce_small(n, adj, cubic, removed_round, link):
     """Remove degree-3 vertices round by round (see ``reduce.py``), starting from those of the
     bitset ``cubic``; returns the alive bitset.
@@ -227,7 +227,7 @@ def _reduce_small(n, adj, cubic, removed_round, link):
     return alive
 
 
-@njit
+@njit_leaf
 def _has_empty_triangle_small(adj, alive):
     """True if an edge of the fundamental triangulation has a third common neighbour (sc)."""
     m = alive
@@ -243,7 +243,7 @@ def _has_empty_triangle_small(adj, alive):
     return False
 
 
-@njit
+@njit_leaf
 def _four_belts_small(n, adj, out):
     """As ``belts._four_belts``: chordless 4-cycles a-b-c-d, each found once from its smallest
     vertex a; writes ``out = (split_k, belts, sum of k * (n - k - 4))``.

@@ -12,7 +12,7 @@ forest is its trees sorted by (length, string) joined by ``+``.
 import numpy as np
 
 from grainclass._kernels.bits import ONE, ZERO, bit, full, lowest
-from grainclass._numba import njit
+from grainclass._numba import njit, njit_leaf
 
 OPEN, CLOSE, PLUS = 40, 41, 43  # "(", ")", "+"
 
@@ -169,7 +169,7 @@ def _forest_string(n, removed_round, parent, out, at, scratch):
     return _write_forest(roots, n_roots, buf, start, length, height, out, at)
 
 
-@njit
+@njit_leaf
 def _forest_string_small(n, alive, removed_round, link, out, at, scratch):
     """:func:`_forest_string` for a grain on bitsets (``small.py``): ``alive`` is the
     fundamental vertex set, ``link[v]`` the bitset of v's neighbours when it went. Parents come

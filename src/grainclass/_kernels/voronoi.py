@@ -8,7 +8,7 @@ the centre of the sphere through s and the three seeds behind the faces that mee
 import numpy as np
 
 from grainclass._kernels.loops import OPEN, _clear, _grain_adjacency, _tables
-from grainclass._numba import njit
+from grainclass._numba import njit, njit_leaf
 
 # Flags per cell, besides loops.BAD_CORNER and loops.OPEN.
 WALL = 4  # a face on the container wall: the slab was too thin for this cell
@@ -16,7 +16,7 @@ OUTSIDE = 8  # a corner's empty sphere reaches beyond the slab's seeds: the cell
 GEOMETRY = 16  # the corners' volume disagrees with Voro++'s: the corner positions are wrong
 
 
-@njit
+@njit_leaf
 def _toward(s, t, points, side):
     """Seed t relative to seed s, x and y at the periodic image nearest to s."""
     dx = points[t, 0] - points[s, 0]
@@ -26,7 +26,7 @@ def _toward(s, t, points, side):
     return dx, dy, points[t, 2] - points[s, 2]
 
 
-@njit
+@njit_leaf
 def _corner(s, t1, t2, t3, points, side, out):
     """The point equidistant from seeds s, t1, t2, t3, relative to s, in ``out``: it solves
     d_i . x = |d_i|^2 / 2 for the three d_i = t_i - s, so x = sum r_i (d_j x d_k) / det.

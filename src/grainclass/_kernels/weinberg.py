@@ -23,7 +23,7 @@ as counter-clockwise seen from outside (the orientation of face 0's list for tex
 import numpy as np
 
 from grainclass._kernels.validate import _rotation
-from grainclass._numba import at, njit
+from grainclass._numba import at, njit, njit_leaf
 
 # Stamps count walks within one kernel call; the table is cleared before they could overflow.
 _MAX_STAMP = 1 << 30
@@ -31,7 +31,7 @@ _USED = np.int64(1) << 31  # the walk has left along this dart
 _LABEL = _USED - 1
 
 
-@njit
+@njit_leaf
 def _walk(n, sigma, length, a, b, turn, best, state, gen, seen, code):
     """The first ``length`` entries of the Weinberg walk that leaves corner (a, b, sigma(a, b))
     along its edge a -> b, turning by ``turn`` in counter-clockwise steps around a corner seen
@@ -84,7 +84,7 @@ def _walk(n, sigma, length, a, b, turn, best, state, gen, seen, code):
     return cmp
 
 
-@njit
+@njit_leaf
 def _weinberg(n, rot, off, sigma, faces, best, gen, seen, code, walks):
     """Canonical code into ``best``; returns (symmetry, chirality, the last stamp used).
     ``rot[off[v]:off[v + 1]]`` is face v's counter-clockwise list, ``sigma`` its table and
