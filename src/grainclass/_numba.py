@@ -20,9 +20,10 @@ njit_leaf = functools.partial(numba.njit, _nrt=False, **JIT)
 """``@njit_leaf``: a kernel that allocates nothing, called once or more per grain, compiled
 without numba's reference counting (NRT). With it, every array passed in was counted up on
 entry and down on exit, each an atomic instruction: those two took over a third of the samples
-of the classification kernel at n = 16, most for the truncation forests' nine scratch arrays.
-Without it the kernel took 490-540 ns a grain instead of 650-730, the Weinberg walks 801
-instead of 932 (best of five). numba refuses to compile an allocation in such a kernel.
+of the classification kernel at n = 16, most for the truncation forests' nine scratch arrays,
+and 4% without it; the kernel with forest strings took a sixth less time (505-668 ns a grain
+against 639-883, the best of five passes in each of six alternated runs). numba refuses to
+compile an allocation in such a kernel.
 """
 
 
