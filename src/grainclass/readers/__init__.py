@@ -202,8 +202,9 @@ def read_once(path: str) -> BinaryIO | None:
     if path == "-":
         # A replaced stdin (a test, an embedding program) is another stream: it is held here,
         # not known by its id, so that no new one can pass for it. One without peek() is
-        # wrapped once, so that every reader sees the bytes another one peeked at; a pipe gets
-        # a larger buffer (:func:`enlarge_pipe`).
+        # wrapped once, so that every reader sees the bytes another one peeked at; a pipe that
+        # the command line reads ahead is taken from its read-ahead (grainclass.pipes), any
+        # other gets a larger buffer (:func:`enlarge_pipe`).
         source = sys.stdin.buffer
         if _stdin is None or _stdin[0] is not source:
             ahead = reading_ahead(source)
