@@ -56,6 +56,13 @@ def enlarge_pipe(stream: BinaryIO) -> int:
     return size
 
 
+def let_gather(got: int) -> None:
+    """After a read of ``got`` bytes from a pipe that gathers reads (:func:`gathers_reads`): if
+    it found the pipe nearly empty, wait a moment for the writer's output to gather."""
+    if got < SHORT_READ_BYTES:
+        time.sleep(GATHER_SECONDS)
+
+
 def gathers_reads(stream: BinaryIO) -> bool:
     """Whether reads of ``stream`` should wait for a writer's output to gather: only from a pipe
     of PIPE_BYTES, enlarged here if need be. A smaller one (64 kB, Linux's default) would fill
@@ -109,8 +116,8 @@ class ReadAhead(io.RawIOBase):
                 self._changed.notify_all()
             if not data:
                 return
-            if self._gather and len(data) < SHORT_READ_BYTES:
-                time.sleep(GATHER_SECONDS)
+            if self._gather:
+                let_gather(len(data))
 
     def readable(self) -> bool:
         return True

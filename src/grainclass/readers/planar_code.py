@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import sys
-import time
 from collections.abc import Iterator
 from dataclasses import dataclass
 from typing import BinaryIO
@@ -11,7 +10,7 @@ from typing import BinaryIO
 import numpy as np
 
 from grainclass.batch import GrainBatch
-from grainclass.pipes import GATHER_SECONDS, SHORT_READ_BYTES, gathers_reads
+from grainclass.pipes import gathers_reads, let_gather
 
 HEADERS = {
     b">>planar_code<<": False,
@@ -167,8 +166,8 @@ class _BufferPool:
                 if not got:
                     break
                 filled += got
-                if gather and got < SHORT_READ_BYTES:
-                    time.sleep(GATHER_SECONDS)
+                if gather:
+                    let_gather(got)
         return owner[:filled], filled < end
 
 
