@@ -127,6 +127,37 @@ def test_bitset_path_equals_general_path_on_random_triangulations(grains):
     assert classify(batch).equals(classify(batch, max_bitset_faces=0))
 
 
+@pytest.mark.parametrize("n", [8, 9])
+def test_lists_out_of_order_classify_as_in_order(plantri_output, n):
+    # Faces whose lists turn the other way, or are shuffled, leave the fast path: the general
+    # validation takes them, and classifies the ok ones on bitsets. The rows must be those of
+    # the lists in order, and of the oracle; the grains of 8 and 9 faces are too few to hide
+    # a difference in the forests or the belts.
+    rng = random.Random(n)
+    graphs = _read_planar_code(plantri_output(n).read_bytes())
+    turned = []
+    for lists in graphs:
+        faces = [list(nbrs) for nbrs in lists]
+        for v in rng.sample(range(n), rng.randint(1, n - 1)):  # some, not all: mixed turns
+            faces[v].reverse()
+            if len(faces[v]) > 3 and rng.random() < 0.5:  # in no cyclic order at all
+                faces[v][:2] = faces[v][1::-1]
+        turned.append(faces)
+    batch = GrainBatch.from_lists(turned)
+    out = _classify_csr(batch, 64, strings=False)
+    assert not out.consistent.any()  # none was taken by the fast path
+    got = _classify(turned)
+    assert got == _classify(graphs)
+    for lists, row in zip(graphs, got, strict=True):
+        assert row == reference.classify(lists) | {"status": "ok"}
+    # The general classification (max_bitset_faces=0) gives the same table and, counting only,
+    # fills the kernels' outputs alike.
+    assert classify(batch).equals(classify(batch, max_bitset_faces=0))
+    general = _classify_csr(batch, 0, strings=False)
+    for name, values in vars(out).items():
+        assert np.array_equal(values, getattr(general, name)), name
+
+
 @pytest.mark.parametrize("n", [10, 11])
 def test_classify_agrees_with_oracle_on_every_triangulation_with_10_and_11_faces(plantri_output, n):
     graphs = _read_planar_code(plantri_output(n).read_bytes())

@@ -164,8 +164,13 @@ class _Classified:
 
 
 def _classify_csr(batch: GrainBatch, max_small: int, strings: bool) -> _Classified:
-    """The fast path over the batch, then the general path over the grains it left."""
-    from grainclass._kernels.batch import _classify_batch, _classify_general_batch
+    """The fast path over the batch, then the general validation over the grains it left,
+    then the general classification over the ok ones of more than ``max_small`` faces."""
+    from grainclass._kernels.batch import (
+        _classify_batch,
+        _classify_general_batch,
+        _validate_pending_batch,
+    )
 
     out = _Classified.empty(batch, strings)
     csr = (batch.face_offsets, batch.nbr_offsets, batch.neighbors)
@@ -185,6 +190,20 @@ def _classify_csr(batch: GrainBatch, max_small: int, strings: bool) -> _Classifi
         *strings_out,
     )
     pending = np.flatnonzero(out.status == codes.PENDING)
+    if len(pending):
+        run_ranges(
+            _validate_pending_batch,
+            len(pending),
+            pending,
+            *csr,
+            max_small,
+            strings,
+            out.status,
+            out.err,
+            *rows,
+            *strings_out,
+        )
+        pending = pending[out.status[pending] == codes.PENDING]
     if len(pending):
         run_ranges(
             _classify_general_batch,

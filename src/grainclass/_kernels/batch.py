@@ -1,10 +1,12 @@
 """The batch kernels: one compiled call classifies every grain of a batch.
 
 Grains with at most 64 faces whose lists pass the fast check run on bitsets with per-call
-scratch (``small.py``); the fast kernels mark every other grain PENDING, for
-:func:`_classify_general_batch`, which allocates per grain but diagnoses anything
-(``validate.py``, ``reduce.py``, ``belts.py``). It is a kernel of its own so that it is compiled
-only when some input needs it (it is most of the compilation). Two layouts come in: CSR arrays
+scratch (``small.py``); the fast kernels mark every other grain PENDING. Those go to
+:func:`_validate_pending_batch`, which allocates per grain but diagnoses anything
+(``validate.py``) and classifies the ok ones on bitsets, and the ok ones of more than 64 faces
+on to :func:`_classify_general_batch` (``reduce.py``, ``belts.py``, ``trees.py``). They are
+kernels of their own so that each is compiled only when some input needs it (together they are
+most of the compilation). Two layouts come in: CSR arrays
 (:func:`_classify_batch`, any reader) and plantri's planar_code bytes, validated in place and
 counted by group without a row per grain (:func:`_tally_records`, the census).
 """
@@ -12,7 +14,7 @@ counted by group without a row per grain (:func:`_tally_records`, the census).
 import numpy as np
 
 from grainclass._kernels.belts import _four_belts
-from grainclass._kernels.bits import MAX_BITSET_FACES, ONE, ZERO, lowest, popcount
+from grainclass._kernels.bits import MAX_BITSET_FACES, ONE, ZERO, bit, lowest, popcount
 from grainclass._kernels.codes import CLASS_OF, E_PARSE, FLAG, INVALID, OK, PENDING, SC, STACKED
 from grainclass._kernels.groups import EMPTY, FIRST_SLOTS, insert
 from grainclass._kernels.planar_code import _entry
@@ -110,6 +112,24 @@ def _classify_small(g, n, triangular, work, family, fundamental, belts):
     return alive
 
 
+@njit(inline="always")
+def _classify_ok_small(
+    g, n, triangular, work, strings, family, fundamental, trees_count, depth, belts,
+    tree_offsets, tree_bytes, tree_length,
+):  # fmt: skip
+    """Classify ok grain g of at most 64 faces, its bitsets in ``work`` and its triangular faces
+    in ``triangular``, into the outputs of :func:`_classify_batch`."""
+    _, _, link, removed_round, scratch = work
+    alive = _classify_small(g, n, triangular, work, family, fundamental, belts)
+    if 4 < fundamental[g] < n:
+        if strings:
+            trees_count[g], depth[g], tree_length[g] = _forest_string_small(
+                n, alive, removed_round, link, tree_bytes, tree_offsets[g], scratch
+            )
+        else:
+            trees_count[g] = _roots_small(alive, n, link)
+
+
 @njit
 def _classify_batch(
     first,
@@ -145,7 +165,7 @@ def _classify_batch(
     truncation forests are only counted (trees_count; depth and tree bytes are left alone).
     """
     work = _work()
-    _, following, link, removed_round, scratch = work
+    following = work[1]
     stamp = 0
     for g in range(first, last):
         family[g] = -1
@@ -165,16 +185,67 @@ def _classify_batch(
         if fast:
             status[g] = OK
             consistent[g] = True
-            alive = _classify_small(g, n, triangular, work, family, fundamental, belts)
-            if 4 < fundamental[g] < n:
-                if strings:
-                    trees_count[g], depth[g], tree_length[g] = _forest_string_small(
-                        n, alive, removed_round, link, tree_bytes, tree_offsets[g], scratch
-                    )
-                else:
-                    trees_count[g] = _roots_small(alive, n, link)
+            _classify_ok_small(
+                g, n, triangular, work, strings, family, fundamental, trees_count, depth, belts,
+                tree_offsets, tree_bytes, tree_length,
+            )  # fmt: skip
         else:
             status[g] = PENDING
+
+
+@njit
+def _validate_pending_batch(
+    first,
+    last,
+    grains,
+    face_offsets,
+    nbr_offsets,
+    neighbors,
+    max_small,
+    strings,
+    status,
+    err,
+    family,
+    fundamental,
+    trees_count,
+    depth,
+    belts,
+    tree_offsets,
+    tree_bytes,
+    tree_length,
+):
+    """The grains ``grains[first:last]`` that the fast path left (outputs as in
+    :func:`_classify_batch`): each is validated with its diagnosis (``validate.py``), and an ok
+    one of at most ``max_small`` faces, whose lists were only out of the fast path's order
+    (turning both ways, or in no cyclic order), is classified on bitsets as by the fast path.
+    Larger ok grains stay PENDING, for :func:`_classify_general_batch`. A kernel of its own, so
+    that the general classification (``reduce.py``, ``belts.py``, ``trees._forest_string``) is
+    compiled only once a grain of more than 64 faces needs it: a first run on a simulation's
+    grains, a few of them degenerate, compiled it for them all the same."""
+    work = _work()
+    bits = work[0]
+    for i in range(first, last):
+        g = grains[i]
+        f0, n = face_offsets[g], face_offsets[g + 1] - face_offsets[g]
+        off = nbr_offsets[f0 : f0 + n + 1] - nbr_offsets[f0]
+        nb = neighbors[nbr_offsets[f0] : nbr_offsets[f0 + n]]
+        status[g] = _validate(n, off, nb, np.zeros((n, n), np.uint8), err[g])
+        if status[g] != OK:
+            continue
+        if n > max_small:
+            status[g] = PENDING
+            continue
+        triangular = ZERO
+        for v in range(n):
+            row = ZERO
+            for k in range(off[v], off[v + 1]):
+                row |= bit(nb[k])
+            bits[v] = row
+            triangular |= bit(v) if off[v + 1] - off[v] == 3 else ZERO
+        _classify_ok_small(
+            g, n, triangular, work, strings, family, fundamental, trees_count, depth, belts,
+            tree_offsets, tree_bytes, tree_length,
+        )  # fmt: skip
 
 
 @njit
@@ -197,8 +268,9 @@ def _classify_general_batch(
     tree_bytes,
     tree_length,
 ):
-    """The general path for grains ``grains[first:last]`` of a CSR batch (outputs as in
-    :func:`_classify_batch`)."""
+    """The general path for grains ``grains[first:last]`` of a CSR batch, validated and
+    classified without bitsets (outputs as in :func:`_classify_batch`): those of more than 64
+    faces, and every grain when the tests compare the two paths."""
     result = np.empty(6, np.int64)
     for i in range(first, last):
         g = grains[i]
