@@ -33,7 +33,7 @@ from grainclass._kernels.trees import (
     _forest_string_small,
     _parents_from_links,
 )
-from grainclass._kernels.validate import _validate
+from grainclass._kernels.validate import _validate, grain_lists
 from grainclass._numba import njit, njit_leaf
 
 
@@ -226,9 +226,7 @@ def _validate_pending_batch(
     bits = work[0]
     for i in range(first, last):
         g = grains[i]
-        f0, n = face_offsets[g], face_offsets[g + 1] - face_offsets[g]
-        off = nbr_offsets[f0 : f0 + n + 1] - nbr_offsets[f0]
-        nb = neighbors[nbr_offsets[f0] : nbr_offsets[f0 + n]]
+        n, off, nb = grain_lists(g, face_offsets, nbr_offsets, neighbors)
         status[g] = _validate(n, off, nb, np.zeros((n, n), np.uint8), err[g])
         if status[g] != OK:
             continue
@@ -274,9 +272,7 @@ def _classify_general_batch(
     result = np.empty(6, np.int64)
     for i in range(first, last):
         g = grains[i]
-        f0, n = face_offsets[g], face_offsets[g + 1] - face_offsets[g]
-        off = nbr_offsets[f0 : f0 + n + 1] - nbr_offsets[f0]
-        nb = neighbors[nbr_offsets[f0] : nbr_offsets[f0 + n]]
+        n, off, nb = grain_lists(g, face_offsets, nbr_offsets, neighbors)
         at = tree_offsets[g] if strings else 0
         result[:] = -1
         _classify_general(n, off, nb, strings, err[g], tree_bytes, at, result, belts[g])

@@ -30,6 +30,15 @@ from grainclass._kernels.codes import (
 from grainclass._numba import njit
 
 
+@njit(inline="always")
+def grain_lists(g, face_offsets, nbr_offsets, neighbors):
+    """``(n, off, nb)``: grain g of a CSR batch as local lists (see above), its offsets
+    rebased to 0 and its neighbours a view."""
+    f0, n = face_offsets[g], face_offsets[g + 1] - face_offsets[g]
+    off = nbr_offsets[f0 : f0 + n + 1] - nbr_offsets[f0]
+    return n, off, neighbors[nbr_offsets[f0] : nbr_offsets[f0 + n]]
+
+
 @njit
 def _count(off, nb, v, x):
     """How often face ``x`` appears in the list of face ``v``."""

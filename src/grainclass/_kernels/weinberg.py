@@ -22,7 +22,7 @@ as counter-clockwise seen from outside (the orientation of face 0's list for tex
 
 import numpy as np
 
-from grainclass._kernels.validate import _rotation
+from grainclass._kernels.validate import _rotation, grain_lists
 from grainclass._numba import at, njit, njit_leaf
 
 # Stamps count walks within one kernel call; the table is cleared before they could overflow.
@@ -158,10 +158,10 @@ def _rotations(first, last, grains, face_offsets, nbr_offsets, neighbors, rotati
     needs it."""
     for i in range(first, last):
         g = grains[i]
-        f0, n = face_offsets[g], face_offsets[g + 1] - face_offsets[g]
-        a = nbr_offsets[f0]
-        rot = np.empty(nbr_offsets[f0 + n] - a, np.int64)
-        _rotation(n, nbr_offsets[f0 : f0 + n + 1] - a, neighbors[a : nbr_offsets[f0 + n]], rot)
+        n, off, nb = grain_lists(g, face_offsets, nbr_offsets, neighbors)
+        rot = np.empty(nb.shape[0], np.int64)
+        _rotation(n, off, nb, rot)
+        a = nbr_offsets[face_offsets[g]]
         for k in range(rot.shape[0]):
             rotations[a + k] = rot[k]
 
