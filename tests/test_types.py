@@ -67,6 +67,16 @@ def test_types_leaves_boundary_grains_out_as_summarize_does(tmp_path):
         assert {r["n_faces"]: r["count"] for r in json.loads(result.stdout)} == counts
         summary = runner.invoke(cli, ["summarize", str(path), "--format", "json", *args])
         assert json.loads(summary.stdout)["headline"]["grains"] == sum(counts.values())
+    # What was left out is said, as summarize's headline says it: of the grains asked for.
+    for args, left_out in (([], 2), (["--n", "6"], 1)):
+        result = runner.invoke(cli, ["types", str(path), *args])
+        assert result.exit_code == 0, result.output
+        note = f"{left_out} grains cut by the sample boundary left out"
+        assert f"types, most frequent first; {note}" in result.stdout
+        assert f"grainclass: {note} (--include-boundary counts them)" in result.stderr
+    for args in (["--include-boundary"], ["--n", "5"], ["-q"]):
+        result = runner.invoke(cli, ["types", str(path), *args])
+        assert "left out" not in result.stderr
 
 
 def test_types_writes_vorotop_distribution(tmp_path):

@@ -427,6 +427,15 @@ def types_cmd(
         shown = table.head(top) if top else table
         shown = shown.drop(columns=["left", "achiral", "right"])
         title = f"{len(table)} types, most frequent first"
+        if table.attrs["boundary_excluded"]:
+            left_out = table.attrs["boundary_excluded"]
+            title += f"; {left_out} grains cut by the sample boundary left out"
+            if not quiet:
+                click.echo(
+                    f"grainclass: {left_out} grains cut by the sample boundary left out "
+                    "(--include-boundary counts them)",
+                    err=True,
+                )
         _write_all(sink, render_frame(shown, fmt, title))
 
 

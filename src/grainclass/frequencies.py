@@ -33,14 +33,19 @@ OUTPUT += [schema.PENALTY, schema.SYMMETRY, "count", *CHIRAL_COUNTS, "fraction"]
 
 def _count_types(
     grains: pa.Table, n_faces: int | None, class_name: str | None, include_boundary: bool
-) -> pd.DataFrame:
+) -> tuple[pd.DataFrame, int]:
+    """The types of one table, and how many grains that would count were left out as cut by
+    the sample boundary."""
     keep = pc.equal(grains.column(schema.STATUS), "ok")
-    if not include_boundary:
-        keep = pc.and_(keep, pc.invert(pc.fill_null(grains.column(schema.BOUNDARY), False)))
     if n_faces is not None:
         keep = pc.and_(keep, pc.equal(grains.column(schema.N_FACES), n_faces))
     if class_name is not None:
         keep = pc.and_(keep, pc.equal(grains.column(schema.CLASS), class_name))
+    excluded = 0
+    if not include_boundary:
+        cut = pc.and_(keep, pc.fill_null(grains.column(schema.BOUNDARY), False))
+        excluded = pc.sum(cut).as_py() or 0
+        keep = pc.and_(keep, pc.invert(cut))
     frame = grains.select(COLUMNS).filter(keep).to_pandas()
     frame[schema.P_VECTOR] = [f"({','.join(map(str, p))})" for p in frame[schema.P_VECTOR]]
     for name, sign in CHIRAL_COUNTS.items():
@@ -49,7 +54,7 @@ def _count_types(
     counts = grouped[FIRST].first()
     counts["count"] = grouped.size()
     counts[list(CHIRAL_COUNTS)] = grouped[list(CHIRAL_COUNTS)].sum()
-    return counts
+    return counts, excluded
 
 
 def type_frequencies(
@@ -75,12 +80,18 @@ def type_frequencies(
         Columns ``weinberg, n_faces, p_vector, class, split, penalty, symmetry, count, left,
         achiral, right, fraction`` (:data:`OUTPUT`; also for no input at all): ``split`` is
         ``k:m`` for flag grains, ``left, achiral, right`` the counts by chirality, ``fraction``
-        of all grains counted.
+        of all grains counted. ``attrs["boundary_excluded"]`` is the number of ok grains (of
+        the ``n_faces`` and class asked for) left out as cut by the sample boundary.
     """
     tables = [grains] if isinstance(grains, pa.Table) else grains
-    parts = [_count_types(table, n_faces, class_name, include_boundary) for table in tables]
+    parts = []
+    excluded = 0
+    for table in tables:
+        part, cut = _count_types(table, n_faces, class_name, include_boundary)
+        parts.append(part)
+        excluded += cut
     if not parts:
-        return pd.DataFrame(columns=OUTPUT)
+        return _with_excluded(pd.DataFrame(columns=OUTPUT), excluded)
     both = pd.concat(parts)
     grouped = both.groupby(level=0, sort=False)
     table = grouped[FIRST].first()
@@ -96,7 +107,12 @@ def type_frequencies(
     table = table.reset_index()[OUTPUT].sort_values(
         ["count", schema.WEINBERG], ascending=[False, True], kind="stable"
     )
-    return table.reset_index(drop=True)
+    return _with_excluded(table.reset_index(drop=True), excluded)
+
+
+def _with_excluded(table: pd.DataFrame, excluded: int) -> pd.DataFrame:
+    table.attrs["boundary_excluded"] = int(excluded)
+    return table
 
 
 def vorotop_distribution(types: pd.DataFrame) -> str:
