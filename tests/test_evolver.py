@@ -114,6 +114,34 @@ def test_body_whose_surface_touches_itself_is_not_a_grain(tmp_path):
     assert "not a sphere: the surface of body 1 has vertices - edges + facets = 1" in row["error"]
 
 
+@pytest.mark.parametrize(
+    ("volume", "error"),
+    [
+        ("1", None),
+        ("0.5", None),  # a body's own volume wins over the geometry's
+        ("nan", "body 1: volume nan: expected a finite number, 0 or more"),
+        ("inf", "body 1: volume inf: expected a finite number, 0 or more"),
+        ("-1", "body 1: volume -1: expected a finite number, 0 or more"),
+        # A ball of area 6 holds sqrt(6^3 / (36 pi)) = 1.38: a unit cube's surface cannot hold 2.
+        ("2", "body 1: volume 2 is more than a surface of area 6 can hold (36 pi V^2 > S^3)"),
+    ],
+)
+def test_given_volume_is_checked_as_in_adjacency_text(tmp_path, volume, error):
+    text = (DATA / "two_cubes.fe").read_text()
+    head, _ = text.split("\nbodies\n")
+    path = tmp_path / "given.fe"
+    path.write_text(head + f"\nbodies\n1\t1 2 3 4 5 6 volume {volume}\n2\t-2 7 8 9 10 11\n")
+    first, second = _rows(path)
+    assert second["status"] == "ok"
+    assert second["volume"] == pytest.approx(1)
+    if error is None:
+        assert first["status"] == "ok"
+        assert first["volume"] == float(volume)
+    else:
+        assert first["status"] == "invalid"
+        assert error in first["error"]
+
+
 def test_body_touching_its_own_periodic_image_is_reported(tmp_path):
     # Two bodies sharing facet 1 become one body using it twice.
     text = (DATA / "two_cubes.fe").read_text()

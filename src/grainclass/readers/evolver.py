@@ -17,6 +17,7 @@ from __future__ import annotations
 import contextlib
 import functools
 import itertools
+import math
 import os
 import re
 import signal
@@ -28,7 +29,7 @@ from multiprocessing import get_context
 
 import numpy as np
 
-from grainclass.batch import GrainBatch, csr_from_lists, tri_state
+from grainclass.batch import GrainBatch, csr_from_lists, isoperimetric_quotient, tri_state
 from grainclass.errors import InputError
 
 # A datafile's sections, and what one numbered line of each is called in messages.
@@ -298,8 +299,22 @@ def _grain(data: _Datafile, body: int, facet_bodies: dict[int, list[int]], marke
         boundary = False
     elif len(data.bodies) > 1:
         boundary = any(not o for o in other)
-    volume = given_volume if given_volume is not None else abs(volume)
-    return neighbours, volume, area, boundary
+    if given_volume is not None:
+        volume = _checked_volume(body, given_volume, area)
+    return neighbours, abs(volume), area, boundary
+
+
+def _checked_volume(body: int, volume: float, area: float) -> float:
+    """A body's given ``volume``, refused as adjacency text refuses one (``adjacency.py``):
+    not a finite number 0 or more, or more than a ball of the surface's area holds."""
+    if not (math.isfinite(volume) and volume >= 0):
+        raise GrainError(f"body {body}: volume {volume:g}: expected a finite number, 0 or more")
+    if isoperimetric_quotient(volume, area) > 1 + 1e-6:
+        raise GrainError(
+            f"body {body}: volume {volume:g} is more than a surface of area {area:g} can hold "
+            "(36 pi V^2 > S^3)"
+        )
+    return volume
 
 
 def _walk_boundary(f, leaving, across, degree) -> list[int]:
