@@ -2,9 +2,11 @@
 
 from __future__ import annotations
 
+import gzip
 import io
 import random
 import struct
+from pathlib import Path
 
 import pyarrow as pa
 import pytest
@@ -161,6 +163,49 @@ def test_utf16_without_a_byte_order_mark_is_named(tmp_path, encoding):
     name = {"utf-16-le": "UTF-16LE", "utf-16-be": "UTF-16BE"}[encoding]
     with pytest.raises(InputError, match=f"{name} text without a byte order mark"):
         list(read_dataset(str(path)))
+
+
+@pytest.mark.parametrize("fmt", ["adjacency", "voro", "neper", "loops"])
+@pytest.mark.parametrize("packing", ["utf-16", "utf-16-le", "gzip"])
+def test_text_format_named_on_utf16_or_compressed_input_says_what_it_is(tmp_path, fmt, packing):
+    """Named, a text format read such input as text: every line an invalid grain, exit 0."""
+    text = (EXAMPLES / "polytopes.txt").read_text()
+    path = tmp_path / "grains.txt"
+    path.write_bytes(gzip.compress(text.encode()) if packing == "gzip" else text.encode(packing))
+    why = {"utf-16": "UTF-16 text", "utf-16-le": "UTF-16LE text", "gzip": "gzip-compressed"}
+    with pytest.raises(InputError, match=why[packing]):
+        list(read_dataset(str(path), format=fmt))
+
+
+def test_planar_code_named_reads_what_it_is_given(tmp_path):
+    """planar_code is bytes: a record may start as a byte order mark does (n = 255, then 254)
+    or as gzip's magic, so named it reads them as records (invalid ones here)."""
+    path = tmp_path / "grains.pc"
+    path.write_bytes(gzip.compress((EXAMPLES / "polytopes.txt").read_bytes()))
+    table = _table(path, format="planar_code")
+    assert set(table.column("status").to_pylist()) == {"invalid"}
+
+
+def test_utf16_or_compressed_evolver_file_is_a_row_that_says_so(tmp_path):
+    """An Evolver file is one grain's row among the others' (a dump of many): 'no bodies'
+    said nothing of why. A compressed one must become a file again: Evolver input is no pipe."""
+    text = (Path(__file__).parent / "data" / "evolver" / "two_cubes.fe").read_text()
+    (tmp_path / "a.fe").write_bytes(text.encode("utf-16"))
+    (tmp_path / "b.fe").write_bytes(gzip.compress(text.encode()))
+    (tmp_path / "c.fe").write_text(text)
+    rows = _table(tmp_path).to_pylist()
+    assert [(r["grain_id"], r["status"]) for r in rows] == [
+        ("a", "invalid"),
+        ("b", "invalid"),
+        ("1", "ok"),
+        ("2", "ok"),
+    ]
+    assert rows[0]["error"] == f"{tmp_path / 'a.fe'}:1: UTF-16 text: save it as UTF-8 " + (
+        "(iconv -f UTF-16 -t UTF-8 FILE)"
+    )
+    assert rows[1]["error"] == f"{tmp_path / 'b.fe'}:1: gzip-compressed: decompress it " + (
+        "first (zcat FILE > NEW.fe)"
+    )
 
 
 def test_planar_code_with_two_byte_entries_is_no_utf16(tmp_path):

@@ -33,19 +33,13 @@ _EVOLVER = re.compile(rb"(?im)^\s*(vertices|torus_filled|torus|periods)\s*(//.*)
 
 # Files that hold no grains a reader could take, by their first bytes (whole magic numbers: a
 # grain id may start with "BZh"): named, not misread (their 0 bytes would make them planar_code).
-_NOT_GRAINS = {
-    re.compile(rb"PAR1"): "a Parquet table, not grains: summarize and types read it, "
-    "classify reads grains",
-    re.compile(
-        rb"\x1f\x8b\x08"
-    ): "gzip-compressed: decompress it first (zcat FILE | grainclass ... -)",
-    re.compile(rb"BZh[1-9]1AY&SY", re.DOTALL): "bzip2-compressed: decompress it first "
-    "(bzcat FILE | grainclass ... -)",
-    re.compile(
-        rb"\xfd7zXZ\x00"
-    ): "xz-compressed: decompress it first (xzcat FILE | grainclass ... -)",
-    re.compile(rb"\x28\xb5\x2f\xfd"): "zstd-compressed: decompress it first "
-    "(zstdcat FILE | grainclass ... -)",
+# Compressed files, by their magic bytes: (compression, the command that decompresses to
+# standard output).
+_COMPRESSED = {
+    re.compile(rb"\x1f\x8b\x08"): ("gzip", "zcat"),
+    re.compile(rb"BZh[1-9]1AY&SY", re.DOTALL): ("bzip2", "bzcat"),
+    re.compile(rb"\xfd7zXZ\x00"): ("xz", "xzcat"),
+    re.compile(rb"\x28\xb5\x2f\xfd"): ("zstd", "zstdcat"),
 }
 
 
@@ -87,8 +81,10 @@ def _returns_alone(head: bytes) -> bool:
     return b"\r" in head and b"\n" not in head
 
 
-def _not_grains(head: bytes) -> str | None:
-    """What an input that holds no grains is, from its first bytes; None for anything else."""
+def _not_grains(head: bytes, file_only: bool = False) -> str | None:
+    """What an input that holds no grains is, from its first bytes; None for anything else.
+    ``file_only``: the input must be a file (Surface Evolver), so a compressed one is to be
+    decompressed into another file, not into a pipe."""
     if head[:2] in (b"\xff\xfe", b"\xfe\xff"):  # a byte order mark, as Windows writes UTF-16
         try:
             head[: len(head) // 2 * 2].decode("utf-16")
@@ -101,7 +97,13 @@ def _not_grains(head: bytes) -> str | None:
             f"{encoding} text without a byte order mark: save it as UTF-8 "
             f"(iconv -f {encoding} -t UTF-8 FILE)"
         )
-    return next((why for magic, why in _NOT_GRAINS.items() if magic.match(head)), None)
+    if head.startswith(b"PAR1"):
+        return "a Parquet table, not grains: summarize and types read it, classify reads grains"
+    for magic, (compression, cat) in _COMPRESSED.items():
+        if magic.match(head):
+            how = f"{cat} FILE > NEW.fe" if file_only else f"{cat} FILE | grainclass ... -"
+            return f"{compression}-compressed: decompress it first ({how})"
+    return None
 
 
 _TEXT = frozenset(b"\t\n\r" + bytes(range(32, 127)))
@@ -376,8 +378,11 @@ def read_dataset(
         with _open(path) as stream:
             head = stream.peek(SNIFF_BYTES)[:SNIFF_BYTES]
             fmt = formats[k - 1] or sniff(head)
-            if fmt == "not grains":
-                raise InputError(path, _not_grains(head) or "not grains")
+            # Named as a text format or not, UTF-16, a compressed file or a Parquet table is
+            # refused for what it is (planar_code is bytes: its records may start like them).
+            why = None if fmt == "planar_code" else _not_grains(head)
+            if why:
+                raise InputError(path, why)
             if fmt != "planar_code" and head.startswith(_BOM):
                 stream.read(len(_BOM))
             if fmt != "planar_code" and _returns_alone(head):
