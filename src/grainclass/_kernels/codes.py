@@ -13,8 +13,8 @@ DEGENERATE = 1
 NON_SIMPLE = 2
 INVALID = 3
 
-# What is wrong with a grain; the kernels also write two integers (a, b) of detail.
-E_NONE = 0
+# What is wrong with a grain; the kernels also write two integers (a, b) of detail. A grain's
+# row of codes starts as zeros: 0 is no code.
 E_PARSE = 1  # the reader could not parse the record (message comes from the reader)
 E_TOO_FEW_FACES = 2  # a = number of faces
 E_INDEX_RANGE = 3  # face a lists face b, which does not exist
