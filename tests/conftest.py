@@ -3,7 +3,11 @@
 from __future__ import annotations
 
 import os
+import signal
 import subprocess
+import sys
+import time
+from collections.abc import Callable
 from pathlib import Path
 
 import pytest
@@ -36,3 +40,31 @@ def plantri_output(plantri, tmp_path_factory):
 def pytest_configure(config):
     # Tests run the real console script in subprocesses; make sure numba's cache is writable.
     os.environ.setdefault("NUMBA_CACHE_DIR", str(ROOT / "build" / "numba-cache"))
+
+
+def has_children(pid: int) -> bool:
+    """Whether process ``pid`` has started a child process (from any of its threads)."""
+    tasks = Path(f"/proc/{pid}/task")
+    return any((task / "children").read_text().strip() for task in tasks.iterdir())
+
+
+def ctrl_c_at_a_terminal(*args: str, when: Callable[[int], bool] = has_children) -> tuple[int, str]:
+    """Run ``grainclass ARGS`` in a process group of its own, as a terminal runs a command, and
+    send the group SIGINT (a terminal's Ctrl-C) once ``when(pid)`` holds, 0.05 s later (by
+    default: its workers are starting up, importing, where Ctrl-C hurt them): (exit code,
+    standard error)."""
+    run = subprocess.Popen(
+        [sys.executable, "-m", "grainclass", *args],
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.PIPE,
+        start_new_session=True,
+    )
+    deadline = time.monotonic() + 60
+    while not when(run.pid):
+        assert time.monotonic() < deadline
+        assert run.poll() is None
+        time.sleep(0.02)
+    time.sleep(0.05)
+    os.killpg(run.pid, signal.SIGINT)
+    _, err = run.communicate(timeout=60)
+    return run.returncode, err.decode()

@@ -18,6 +18,7 @@ from pathlib import Path
 import pandas as pd
 import pytest
 
+from conftest import ctrl_c_at_a_terminal
 from grainclass.census import (
     CHECKS,
     CensusProgress,
@@ -170,6 +171,21 @@ def test_interrupted_census_resumes_where_it_stopped(tmp_path, plantri):
         assert (out / "parts" / name).stat().st_mtime_ns == mtime
     row = pd.read_csv(out / "classes.csv", dtype={"n": str}).set_index("n").loc["12"]
     assert tuple(int(row[c]) for c in CLASS_COLUMNS) == TABLE_II[12]
+
+
+def test_ctrl_c_at_a_terminal_ends_the_census_and_its_workers_quietly(tmp_path, plantri):
+    """Ctrl-C reaches the Dask workers too, each at its part: they end quietly (each printed a
+    page of traceback), the census exits 130 and its plantri runs end with it."""
+    slow = _fake_plantri(tmp_path, "slow-plantri", plantri, 'case "$*" in *7/8*) sleep 30;; esac')
+    out = tmp_path / "census"
+    args = ["12", "--parts", "8", "--workers", "2", "-o", str(out), "--plantri", slow]
+    code, err = ctrl_c_at_a_terminal(
+        "census", *args, when=lambda pid: len(list(out.glob("parts/*.parquet"))) >= 2
+    )
+    assert code == 130, err
+    assert "Traceback" not in err
+    assert "grainclass: interrupted" in err
+    assert not [f for f in out.rglob("*") if f.name.endswith(".tmp")]
 
 
 def test_a_cross_check_that_fails_exits_1(tmp_path, plantri):

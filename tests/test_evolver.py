@@ -9,6 +9,7 @@ import pyarrow as pa
 import pytest
 from click.testing import CliRunner
 
+from conftest import ctrl_c_at_a_terminal
 from evolver_expected import FIXTURES, FOAMS
 from grainclass import classify, read_dataset
 from grainclass.cli import cli
@@ -274,13 +275,7 @@ def test_one_bad_line_of_a_whole_foam_fails_only_the_bodies_that_need_it(
 
 def test_ctrl_c_at_a_terminal_stops_the_readers_quietly(tmp_path):
     """A terminal's Ctrl-C goes to every process of its group, the pool's workers too (200
-    files or more): they leave it to the parent, which exits 130 without a traceback."""
-    import os
-    import signal
-    import subprocess
-    import sys
-    import time
-
+    files or more): they end quietly, and the parent exits 130 without a traceback."""
     from grainclass.readers.evolver import PARALLEL_FILES
 
     folder = tmp_path / "dump"
@@ -289,22 +284,9 @@ def test_ctrl_c_at_a_terminal_stops_the_readers_quietly(tmp_path):
     for k in range(4 * PARALLEL_FILES):
         (folder / f"{k:04d}.fe").write_bytes(source)
     out = tmp_path / "out.parquet"
-    run = subprocess.Popen(
-        [sys.executable, "-m", "grainclass", "classify", str(folder), "-o", str(out), "-q"],
-        stderr=subprocess.PIPE,
-        start_new_session=True,  # its own group, as a terminal gives a command
-    )
-    deadline = time.monotonic() + 60
-    children = Path(f"/proc/{run.pid}/task")
-    while not any((task / "children").read_text().strip() for task in children.iterdir()):
-        assert time.monotonic() < deadline
-        assert run.poll() is None
-        time.sleep(0.02)
-    time.sleep(0.05)  # the workers are starting up, importing: where Ctrl-C hurt them
-    os.killpg(run.pid, signal.SIGINT)
-    _, err = run.communicate(timeout=60)
-    assert run.returncode == 130
-    assert "Traceback" not in err.decode()
+    code, err = ctrl_c_at_a_terminal("classify", str(folder), "-o", str(out), "-q")
+    assert code == 130
+    assert "Traceback" not in err
     assert [p.name for p in tmp_path.iterdir()] == ["dump"]
 
 

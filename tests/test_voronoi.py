@@ -16,6 +16,7 @@ import pytest
 import pyvoro2
 from click.testing import CliRunner
 
+from conftest import ctrl_c_at_a_terminal
 from grainclass import classify, read_dataset
 from grainclass.cli import cli
 from grainclass.voronoi import VoronoiReport, poisson_voronoi
@@ -476,3 +477,13 @@ def test_the_smallest_and_largest_box_fill_themselves():
     for box in (1e-30, 1e30):
         volume = sum(batch.volume.sum() for batch in poisson_voronoi(30, seed=1, box=box))
         assert volume == pytest.approx(box**3, rel=1e-9)
+
+
+def test_ctrl_c_at_a_terminal_stops_the_slab_workers_quietly(tmp_path):
+    """Ctrl-C reaches the slab workers too, starting up or at their slab: they end quietly, and
+    the run exits 130 without a traceback and without its output."""
+    out = tmp_path / "pv.txt"
+    code, err = ctrl_c_at_a_terminal("voronoi", "268402", "--seed", "1", "-o", str(out), "-q")
+    assert code == 130
+    assert "Traceback" not in err
+    assert list(tmp_path.iterdir()) == []

@@ -617,10 +617,22 @@ def dask_client(scheduler: str | None = None, workers: int | None = None) -> Ite
             # listens on a free local port, so that several clusters can run at once.
             dashboard_address="127.0.0.1:0",
             silence_logs=logging.ERROR,  # a worker restarted after a loss is not news here
+            preload=[__name__],  # dask_setup, below
         ) as cluster,
         Client(cluster) as client,
     ):
         yield client
+
+
+def dask_setup(worker: object) -> None:
+    """Run by each worker process of :func:`dask_client`'s local cluster once it has started:
+    Ctrl-C ends it at once and quietly (``parallel.end_quietly_on_interrupt``), where each
+    worker printed a page of traceback. Dask starts its workers from threads of its own, whose
+    signal mask :func:`grainclass.parallel.interrupts_blocked` does not reach: a Ctrl-C in the
+    second or so while they import still ends them with a traceback."""
+    from grainclass.parallel import end_quietly_on_interrupt
+
+    end_quietly_on_interrupt()
 
 
 def format_seconds(seconds: float | None) -> str:

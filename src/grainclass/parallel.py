@@ -10,11 +10,13 @@ every batch, which matters when a producer (plantri in a pipe) shares the cores.
 from __future__ import annotations
 
 import collections
+import contextlib
 import itertools
 import os
+import signal
 import threading
 from collections.abc import Callable, Iterable, Iterator
-from concurrent.futures import Future, ThreadPoolExecutor
+from concurrent.futures import Future, ProcessPoolExecutor, ThreadPoolExecutor
 from typing import TypeVar
 
 T = TypeVar("T")
@@ -96,3 +98,44 @@ def map_ordered(function: Callable[[T], R], items: Iterable[T]) -> Iterator[R]:
     finally:
         for future in pending:
             future.cancel()
+
+
+@contextlib.contextmanager
+def interrupts_blocked() -> Iterator[None]:
+    """SIGINT blocked in this thread while the body starts worker processes, which keep it
+    blocked (the mask outlives exec) until they take it up (:func:`end_quietly_on_interrupt`).
+    Ctrl-C reaches every process of the terminal's group, and workers interrupted mid-import
+    printed pages of tracebacks (and once left a pool hung). Held back, not lost: a Ctrl-C in
+    the body reaches this process as the body ends."""
+    if not hasattr(signal, "pthread_sigmask"):  # Windows
+        yield
+        return
+    before = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
+    try:
+        yield
+    finally:
+        signal.pthread_sigmask(signal.SIG_SETMASK, before)
+
+
+def worker_pool(workers: int) -> ProcessPoolExecutor:
+    """Spawned worker processes (not forked: the parent may be running compiled kernels in
+    threads) that end at once and quietly on Ctrl-C, where ignoring it kept their parent
+    waiting for their tasks. Start them (submit or map) within :func:`interrupts_blocked`."""
+    from multiprocessing import get_context
+
+    return ProcessPoolExecutor(
+        workers, mp_context=get_context("spawn"), initializer=end_quietly_on_interrupt
+    )
+
+
+def end_quietly_on_interrupt(*_: object) -> None:
+    """In a worker process, once it has started (in its main thread): SIGINT ends it at once,
+    without a traceback (one held back while it started, too); its parent, interrupted as well,
+    stops and says so."""
+    signal.signal(signal.SIGINT, _end_quietly)
+    if hasattr(signal, "pthread_sigmask"):
+        signal.pthread_sigmask(signal.SIG_UNBLOCK, {signal.SIGINT})
+
+
+def _end_quietly(signum: int, frame: object) -> None:
+    os._exit(128 + signum)

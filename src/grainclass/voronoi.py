@@ -25,10 +25,9 @@ import itertools
 import math
 from collections import Counter
 from collections.abc import Iterator
-from concurrent.futures import Future, ProcessPoolExecutor
+from concurrent.futures import Future
 from contextlib import contextmanager
 from dataclasses import dataclass
-from multiprocessing import get_context
 
 import numpy as np
 
@@ -211,13 +210,14 @@ def _check_spacing(points: np.ndarray, side: float) -> None:
 def _tessellate_slabs(points: np.ndarray, side: float, slabs: int, margin: float) -> Iterator[dict]:
     """Every slab's grains (:func:`_slab`), bottom to top, computed on worker processes; a slab
     where a corner's empty sphere left the seeds present is done again with twice the margin."""
-    from grainclass.parallel import get_jobs
+    from grainclass.parallel import get_jobs, interrupts_blocked, worker_pool
 
-    pool = ProcessPoolExecutor(min(get_jobs(), slabs), mp_context=get_context("spawn"))
+    pool = worker_pool(min(get_jobs(), slabs))
     try:
-        futures: list[Future | None] = [
-            pool.submit(_slab, points, side, k, slabs, margin) for k in range(slabs)
-        ]
+        with interrupts_blocked():  # the submissions start the workers
+            futures: list[Future | None] = [
+                pool.submit(_slab, points, side, k, slabs, margin) for k in range(slabs)
+            ]
         for k, future in enumerate(futures):
             assert future is not None
             futures[k] = None  # the result goes once its grains are out

@@ -20,17 +20,15 @@ import itertools
 import math
 import os
 import re
-import signal
 from collections import defaultdict
 from collections.abc import Iterable, Iterator
-from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass, field
-from multiprocessing import get_context
 
 import numpy as np
 
 from grainclass.batch import GrainBatch, csr_from_lists, isoperimetric_quotient, tri_state
 from grainclass.errors import InputError
+from grainclass.parallel import interrupts_blocked, worker_pool
 
 # A datafile's sections, and what one numbered line of each is called in messages.
 SECTIONS = {
@@ -416,21 +414,6 @@ def _measure(position: np.ndarray, polygons: list[list[int]]) -> tuple[float, fl
     return volume, area
 
 
-@contextlib.contextmanager
-def _interrupts_blocked() -> Iterator[None]:
-    """SIGINT blocked in this thread, and so in the processes it starts: Ctrl-C reaches every
-    process of the terminal's group, and workers interrupted mid-import printed tracebacks
-    (and once left the pool hung). The parent stops them."""
-    if not hasattr(signal, "pthread_sigmask"):  # Windows
-        yield
-        return
-    before = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
-    try:
-        yield
-    finally:
-        signal.pthread_sigmask(signal.SIG_SETMASK, before)
-
-
 def read_evolver(
     paths: Iterable[str],
     chunk_size: int,
@@ -458,11 +441,10 @@ def read_evolver(
     with contextlib.ExitStack() as stack:
         per_file: Iterable[list[_Grain]] = map(read, paths)
         if len(paths) >= PARALLEL_FILES and (os.cpu_count() or 1) > 1:
-            # Parsing is pure Python: a folder of dumps is read by one process per core. Spawned,
-            # not forked: the parent may be running compiled kernels in threads.
-            pool = ProcessPoolExecutor(os.cpu_count(), mp_context=get_context("spawn"))
+            # Parsing is pure Python: a folder of dumps is read by one process per core.
+            pool = worker_pool(os.cpu_count() or 1)
             stack.callback(pool.shutdown, wait=True, cancel_futures=True)
-            with _interrupts_blocked():  # map starts the workers
+            with interrupts_blocked():  # map starts the workers
                 per_file = pool.map(read, paths, chunksize=16)
         for file_grains in per_file:
             grains += file_grains
