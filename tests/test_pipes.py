@@ -1,5 +1,5 @@
-"""Standard input read ahead (:class:`grainclass.pipes.ReadAhead`): the writer goes on while
-grainclass starts up, and the reader gets exactly the bytes written, in order."""
+"""Standard input and FIFOs read ahead (:class:`grainclass.pipes.ReadAhead`): the writer goes
+on while grainclass starts up, and the reader gets exactly the bytes written, in order."""
 
 import os
 import random
@@ -9,7 +9,14 @@ import threading
 
 import pytest
 
-from grainclass.pipes import PIPE_BYTES, ReadAhead, read_ahead, reading_ahead
+from grainclass.pipes import (
+    PIPE_BYTES,
+    ReadAhead,
+    read_ahead,
+    read_ahead_path,
+    reading_ahead,
+    take_read_ahead,
+)
 
 pytestmark = pytest.mark.skipif(sys.platform == "win32", reason="POSIX pipes")
 
@@ -116,3 +123,54 @@ def test_standard_input_read_ahead_summarizes_as_the_file(tmp_path, plantri):
     assert piped.returncode == 0
     assert out == from_file.stdout
     assert b"1249" in out  # plantri 11's triangulations, Table I
+
+
+def test_a_fifo_is_opened_by_the_read_ahead_and_read_whole(tmp_path):
+    """A FIFO's reader opens it, which waits for a writer: that wait is the thread's, not the
+    command's, and a writer that comes late is read from its first byte, in order."""
+    fifo = tmp_path / "fifo"
+    os.mkfifo(fifo)
+    stream = ReadAhead(str(fifo))  # no writer yet: returns at once
+    data = random.Random(8).randbytes(3 * PIPE_BYTES + 999)
+    writer = _writer(os.open(fifo, os.O_WRONLY), data, random.Random(9))
+    writer.join(timeout=60)
+    assert not writer.is_alive()  # three pipes' worth written before the first read
+    assert _read_all(stream, random.Random(10)) == data
+    stream.close()
+
+
+def test_a_fifo_that_cannot_be_opened_fails_the_first_read(tmp_path):
+    with pytest.raises(IsADirectoryError):
+        ReadAhead(str(tmp_path)).readinto(bytearray(10))
+
+
+def test_only_a_fifo_path_is_read_ahead_and_handed_over_once(tmp_path):
+    path = tmp_path / "file"
+    path.write_bytes(b"4 2 3 4")
+    assert read_ahead_path(str(path)) is None
+    assert read_ahead_path(str(tmp_path / "missing")) is None
+    fifo = tmp_path / "fifo"
+    os.mkfifo(fifo)
+    ahead = read_ahead_path(str(fifo))
+    assert isinstance(ahead, ReadAhead)
+    assert read_ahead_path(str(fifo)) is ahead  # started once
+    assert take_read_ahead(str(fifo)) is ahead
+    assert take_read_ahead(str(fifo)) is None  # its reader has it
+    os.close(os.open(fifo, os.O_WRONLY))  # a writer that writes nothing: the thread ends
+    assert ahead.readinto(bytearray(10)) == 0
+    ahead.close()
+
+
+def test_a_process_substitution_summarizes_as_the_file(tmp_path, plantri):
+    # <(plantri 11): the command line reads its first input ahead when it is a FIFO.
+    path = tmp_path / "p11.pc"
+    subprocess.run([plantri, "11", str(path)], check=True, capture_output=True)
+    command = [sys.executable, "-m", "grainclass", "summarize", "--format", "csv", "-q"]
+    from_file = subprocess.run([*command, str(path)], check=True, capture_output=True)
+    substituted = subprocess.run(
+        ["bash", "-c", f'"$0" "$@" <(cat "{path}")', *command],
+        check=True,
+        capture_output=True,
+    )
+    assert substituted.stdout == from_file.stdout
+    assert b"1249" in substituted.stdout  # plantri 11's triangulations, Table I

@@ -10,7 +10,7 @@ import os
 import signal
 import sys
 import warnings
-from collections.abc import Iterable, Iterator
+from collections.abc import Iterable, Iterator, Sequence
 from contextlib import contextmanager, nullcontext
 from typing import BinaryIO, TypeVar
 
@@ -199,13 +199,18 @@ def _resume_collection() -> None:
         gc.enable()
 
 
-def _read_ahead(inputs: Iterable[str]) -> None:
-    """Standard input, if it is an input and a pipe, is read from now on, while the libraries
-    load (:class:`grainclass.pipes.ReadAhead`)."""
-    if "-" in inputs:
-        from grainclass.pipes import read_ahead
+def _read_ahead(inputs: Sequence[str], input_format: str) -> None:
+    """Standard input, if it is an input and a pipe, and the first input, if it is a FIFO (a
+    process substitution, ``<(plantri 16)``), are read from now on, while the libraries load
+    (:class:`grainclass.pipes.ReadAhead`). Later FIFOs are opened in their turn; Surface
+    Evolver files are read whole by their own reader."""
+    from grainclass.pipes import read_ahead, read_ahead_path
 
+    if "-" in inputs:
         read_ahead(sys.stdin.buffer)
+    first = inputs[0]
+    if first != "-" and input_format != "evolver" and not first.lower().endswith(".fe"):
+        read_ahead_path(first)
 
 
 def _progress(quiet: bool):
@@ -244,7 +249,7 @@ def classify_cmd(
     sniffed from the content; face-vertex loops must be named (--format loops). '-' reads
     standard input, e.g. `plantri 12 | grainclass classify - -o all12.parquet`.
     """
-    _read_ahead(inputs)
+    _read_ahead(inputs, input_format)
     from grainclass.errors import GrainclassError
     from grainclass.parquet import GrainTableWriter
     from grainclass.pipeline import classified_tables
@@ -326,7 +331,7 @@ def summarize_cmd(
     percentage of faces that are triangles and the number of distinct types (from Parquet
     files that have them, or from raw inputs with --types).
     """
-    _read_ahead(grains)
+    _read_ahead(grains, input_format)
     from grainclass.errors import GrainclassError
     from grainclass.pipeline import tallies
     from grainclass.render import EXTENSIONS, render
@@ -400,7 +405,7 @@ def types_cmd(
     symmetry, count and fraction. GRAINS are per-grain Parquet tables or any input classify reads.
     Grains cut by a sample boundary are left out, as summarize leaves them.
     """
-    _read_ahead(grains)
+    _read_ahead(grains, input_format)
     from grainclass.errors import GrainclassError
     from grainclass.frequencies import COLUMNS, type_frequencies, vorotop_distribution
     from grainclass.pipeline import grain_tables

@@ -82,11 +82,18 @@ class ReadAhead(io.RawIOBase):
     faster than the writer writes (a quarter of n = 16 through summarize: 6.0-6.4 s, so
     5.4-5.7 s). Reads that find the pipe nearly empty let the writer's output gather (see
     GATHER_SECONDS); the stream has no fileno(), so that its readers do not gather again. A
-    read error is raised to the reader once what came before it is read."""
+    read error is raised to the reader once what came before it is read.
 
-    def __init__(self, fd: int, gather: bool, limit: int = AHEAD_BYTES) -> None:
+    ``source`` is an open pipe's file descriptor, or the path of a FIFO (a process
+    substitution's ``/dev/fd/63`` too), which the thread opens, and so may wait for a writer
+    without holding up the command; ``gather`` is then found once it is open, and an error
+    opening it is the first read's.
+    """
+
+    def __init__(self, source: int | str, gather: bool = False, limit: int = AHEAD_BYTES) -> None:
         super().__init__()
-        self._fd = fd
+        self._source = source
+        self._opened: BinaryIO | None = None  # the FIFO, opened by the thread
         self._gather = gather
         self._limit = limit
         self._chunks: deque[memoryview] = deque()
@@ -97,6 +104,19 @@ class ReadAhead(io.RawIOBase):
         threading.Thread(target=self._run, name="grainclass-read-ahead", daemon=True).start()
 
     def _run(self) -> None:
+        if isinstance(self._source, str):
+            try:
+                self._opened = open(self._source, "rb", buffering=0)  # noqa: SIM115 (close())
+            except OSError as exc:
+                with self._changed:
+                    self._error, self._ended = exc, True
+                    self._changed.notify_all()
+                return
+            if self.closed:  # closed while the FIFO waited for its writer
+                self._opened.close()
+                return
+            self._gather = gathers_reads(self._opened)
+            self._source = self._opened.fileno()
         while True:
             with self._changed:
                 while self._held >= self._limit and not self.closed:
@@ -104,7 +124,7 @@ class ReadAhead(io.RawIOBase):
                 if self.closed:
                     return
             try:
-                data = os.read(self._fd, PIPE_BYTES)
+                data = os.read(self._source, PIPE_BYTES)
             except OSError as exc:
                 data, self._error = b"", exc
             with self._changed:
@@ -145,6 +165,8 @@ class ReadAhead(io.RawIOBase):
         with self._changed:
             super().close()
             self._changed.notify_all()
+            if self._opened is not None:
+                self._opened.close()
 
 
 # The stream read ahead (standard input's), and its ReadAhead.
@@ -165,3 +187,27 @@ def read_ahead(source: BinaryIO) -> ReadAhead | None:
 def reading_ahead(source: BinaryIO) -> ReadAhead | None:
     """The :class:`ReadAhead` of ``source`` if :func:`read_ahead` started one, else None."""
     return _reading_ahead[1] if _reading_ahead and _reading_ahead[0] is source else None
+
+
+# FIFOs read ahead, by path, until their reader takes them.
+_paths_ahead: dict[str, ReadAhead] = {}
+
+
+def read_ahead_path(path: str) -> ReadAhead | None:
+    """Start reading the FIFO at ``path`` ahead (:class:`ReadAhead`, which opens it), as
+    :func:`read_ahead` does standard input: its ReadAhead, also for later calls; None for a path
+    that is no FIFO (or not there: its reader says so)."""
+    if path not in _paths_ahead:
+        try:
+            if not stat.S_ISFIFO(os.stat(path).st_mode):
+                return None
+        except (OSError, ValueError):
+            return None
+        _paths_ahead[path] = ReadAhead(path)
+    return _paths_ahead[path]
+
+
+def take_read_ahead(path: str) -> ReadAhead | None:
+    """The :class:`ReadAhead` that :func:`read_ahead_path` started for ``path``, handed over to
+    its reader (once), else None."""
+    return _paths_ahead.pop(path, None)

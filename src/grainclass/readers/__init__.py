@@ -19,7 +19,7 @@ from typing import BinaryIO
 from grainclass import DEFAULT_CHUNK_SIZE
 from grainclass.batch import GrainBatch
 from grainclass.errors import EmptyInputWarning, InputError
-from grainclass.pipes import PIPE_BYTES, enlarge_pipe, reading_ahead
+from grainclass.pipes import PIPE_BYTES, enlarge_pipe, reading_ahead, take_read_ahead
 from grainclass.readers.adjacency import read_adjacency
 from grainclass.readers.evolver import DEFAULT_TRIPLE_EDGES, read_evolver
 from grainclass.readers.loops import read_loops
@@ -220,11 +220,15 @@ def read_once(path: str) -> BinaryIO | None:
     if path not in _read_once:
         if not _is_stream(path):
             return None
-        try:
-            stream = open(path, "rb")  # noqa: SIM115 (closed by _open, once read)
-        except OSError as exc:
-            raise InputError(path, exc.strerror or str(exc)) from None
-        enlarge_pipe(stream)
+        ahead = take_read_ahead(path)  # the command line's first input, if a FIFO
+        if ahead is not None:
+            stream: BinaryIO = io.BufferedReader(ahead, PIPE_BYTES)
+        else:
+            try:
+                stream = open(path, "rb")  # noqa: SIM115 (closed by _open, once read)
+            except OSError as exc:
+                raise InputError(path, exc.strerror or str(exc)) from None
+            enlarge_pipe(stream)
         _read_once[path] = _with_head(stream, path)
     return _read_once[path]
 
