@@ -310,6 +310,14 @@ def bench_startup(work: Path) -> None:
     shutil.rmtree(cache, ignore_errors=True)
     bad = ROOT / "examples" / "bad-grains.txt"
     first_bad = timed(f"{gc} classify {bad} -o {work / 'e.parquet'} -q", env)
+    # A grain of more than 64 faces needs the general classification, compiled only then.
+    shutil.rmtree(cache, ignore_errors=True)
+    big = work / "prism70.txt"
+    k = 68  # the 68-gonal prism: 68 quadrilaterals and two 68-gons
+    faces = [[k, (i - 1) % k, k + 1, (i + 1) % k] for i in range(k)]
+    faces += [list(range(k)), list(reversed(range(k)))]
+    big.write_text("prism70\t" + ";".join(" ".join(map(str, f)) for f in faces) + "\n")
+    first_big = timed(f"{gc} classify {big} -o {work / 'e.parquet'} -q", env)
     helps = [timed(f"{gc} --help > /dev/null").seconds for _ in range(3)]
     console = shutil.which("grainclass")
     script = [timed(f"{console} --help > /dev/null").seconds for _ in range(3)] if console else []
@@ -318,6 +326,7 @@ def bench_startup(work: Path) -> None:
         f"warm run: {warm.seconds:.2f} s"
     )
     print(f"    first run on grains not all ok ({bad.name}): {first_bad.seconds:.2f} s")
+    print(f"    first run on a grain of 70 faces: {first_big.seconds:.2f} s")
     print(
         "    grainclass --help: " + (f"{min(script):.3f} s (console script), " if script else ""),
         f"{min(helps):.3f} s (python -m grainclass)",

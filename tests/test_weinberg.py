@@ -172,6 +172,32 @@ def test_large_grains_agree_with_brute_force(lists, rng):
     assert row["symmetry"] == symmetry
 
 
+def _prism(k: int) -> list[list[int]]:
+    """The k-gonal prism's face lists, turning one way: k quadrilaterals, then the two k-gons."""
+    top, bottom = k, k + 1
+    quads = [[top, (i - 1) % k, bottom, (i + 1) % k] for i in range(k)]
+    return [*quads, list(range(k)), list(reversed(range(k)))]
+
+
+@given(st.integers(min_value=63, max_value=80), st.randoms(use_true_random=False))
+@settings(max_examples=8, deadline=None)
+def test_prisms_beyond_the_bitsets_keep_their_lists_when_they_turn_one_way(k, rng):
+    """Beyond 64 faces the general path validates; lists that already turn one way are the
+    rotation lists as they are (no recovery), and lists turned at random give the same row. A
+    k-prism's symmetry is its group D_kh, of order 4k, with mirrors: achiral."""
+    from grainclass.classification import _classify_csr
+
+    one_way = _prism(k)
+    turned = [list(reversed(f)) if rng.random() < 0.5 else f for f in one_way]
+    turned[0] = one_way[0]  # face 0 keeps its sense: the code's orientation is face 0's
+    batch = GrainBatch.from_lists([one_way, turned])
+    kept = _classify_csr(batch, 64, strings=True).consistent
+    assert list(kept) == [True, turned == one_way]
+    first, second = classify(batch).to_pylist()
+    assert (first["n_faces"], first["symmetry"], first["chirality"]) == (k + 2, 4 * k, 0)
+    assert {**first, "grain_id": None} == {**second, "grain_id": None}
+
+
 def test_papers_grains_a_b_c(plantri_output):
     # The paper's Fig. 15: three 10-face flag grains with p-vector (0,4,4,2). A has two belts of
     # type 3:4:3 and symmetry order 8, B one and order 2, C none and order 2. By the definition

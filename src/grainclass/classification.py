@@ -199,6 +199,7 @@ def _classify_csr(batch: GrainBatch, max_small: int, strings: bool) -> _Classifi
             max_small,
             strings,
             out.status,
+            out.consistent,
             out.err,
             *rows,
             *strings_out,
@@ -212,7 +213,6 @@ def _classify_csr(batch: GrainBatch, max_small: int, strings: bool) -> _Classifi
             *csr,
             strings,
             out.status,
-            out.err,
             *rows,
             *strings_out,
         )

@@ -50,31 +50,32 @@ def _work():
 
 
 @njit
-def _classify_general(n, off, nb, strings, err, out, at, result, belts):
-    """Any grain: validate with diagnosis, then classify. ``result`` gets (status, family,
-    fundamental, trees, depth, tree length); without ``strings`` only the number of trees."""
+def _classify_ok_general(n, off, nb, strings, out, at, result, belts):
+    """Classify an ok grain (validated by :func:`_validate_pending_batch`) without bitsets.
+    ``result`` gets (family, fundamental, trees, depth, tree length); without ``strings`` only
+    the number of trees."""
     adj = np.zeros((n, n), np.uint8)
-    result[0] = _validate(n, off, nb, adj, err)
-    if result[0] != OK:
-        return
+    for v in range(n):
+        for i in range(off[v], off[v + 1]):
+            adj[v, nb[i]] = 1
     alive = np.empty(n, np.bool_)
     removed_round = np.empty(n, np.int32)
     link = np.empty((n, 3), np.int32)
-    result[2] = _reduce(n, off, nb, alive, removed_round, link)
-    if result[2] == 4:
-        result[1] = STACKED
+    result[1] = _reduce(n, off, nb, alive, removed_round, link)
+    if result[1] == 4:
+        result[0] = STACKED
         return
-    result[1] = SC if _has_empty_triangle(n, off, nb, adj, alive) else FLAG
-    if result[2] < n:
+    result[0] = SC if _has_empty_triangle(n, off, nb, adj, alive) else FLAG
+    if result[1] < n:
         parent = np.empty(n, np.int32)
         _parents_from_links(n, alive, removed_round, link, parent)
         if strings:
-            result[3], result[4], result[5] = _forest_string(
+            result[2], result[3], result[4] = _forest_string(
                 n, removed_round, parent, out, at, _forest_scratch(n)
             )
         else:
-            result[3] = np.sum((parent < 0) & ~alive)
-    elif result[1] == FLAG:
+            result[2] = np.sum((parent < 0) & ~alive)
+    elif result[0] == FLAG:
         _four_belts(n, off, nb, adj, belts)
 
 
@@ -204,6 +205,7 @@ def _validate_pending_batch(
     max_small,
     strings,
     status,
+    consistent,
     err,
     family,
     fundamental,
@@ -215,7 +217,9 @@ def _validate_pending_batch(
     tree_length,
 ):
     """The grains ``grains[first:last]`` that the fast path left (outputs as in
-    :func:`_classify_batch`): each is validated with its diagnosis (``validate.py``), and an ok
+    :func:`_classify_batch`; ``consistent`` marks those whose lists turn one way as given, where
+    the fast path left a grain of more than 64 faces): each is validated with its diagnosis
+    (``validate.py``), and an ok
     one of at most ``max_small`` faces, whose lists were only out of the fast path's order
     (turning both ways, or in no cyclic order), is classified on bitsets as by the fast path.
     Larger ok grains stay PENDING, for :func:`_classify_general_batch`. A kernel of its own, so
@@ -227,7 +231,7 @@ def _validate_pending_batch(
     for i in range(first, last):
         g = grains[i]
         n, off, nb = grain_lists(g, face_offsets, nbr_offsets, neighbors)
-        status[g] = _validate(n, off, nb, np.zeros((n, n), np.uint8), err[g])
+        status[g], consistent[g] = _validate(n, off, nb, np.zeros((n, n), np.uint8), err[g])
         if status[g] != OK:
             continue
         if n > max_small:
@@ -256,7 +260,6 @@ def _classify_general_batch(
     neighbors,
     strings,
     status,
-    err,
     family,
     fundamental,
     trees_count,
@@ -266,23 +269,23 @@ def _classify_general_batch(
     tree_bytes,
     tree_length,
 ):
-    """The general path for grains ``grains[first:last]`` of a CSR batch, validated and
-    classified without bitsets (outputs as in :func:`_classify_batch`): those of more than 64
-    faces, and every grain when the tests compare the two paths."""
-    result = np.empty(6, np.int64)
+    """The general path for the ok grains ``grains[first:last]`` of a CSR batch, which
+    :func:`_validate_pending_batch` left PENDING, classified without bitsets (outputs as in
+    :func:`_classify_batch`): those of more than 64 faces, and every grain when the tests
+    compare the two paths. Validating them again took its compilation 1-2 s more."""
+    result = np.empty(5, np.int64)
     for i in range(first, last):
         g = grains[i]
         n, off, nb = grain_lists(g, face_offsets, nbr_offsets, neighbors)
         at = tree_offsets[g] if strings else 0
         result[:] = -1
-        _classify_general(n, off, nb, strings, err[g], tree_bytes, at, result, belts[g])
-        status[g] = result[0]
-        if result[0] == OK:
-            family[g], fundamental[g] = result[1], result[2]
-            if result[3] >= 0:
-                trees_count[g] = result[3]
-                if strings:  # else they were not computed (-1): left alone, as by the fast path
-                    depth[g], tree_length[g] = result[4], result[5]
+        _classify_ok_general(n, off, nb, strings, tree_bytes, at, result, belts[g])
+        status[g] = OK
+        family[g], fundamental[g] = result[0], result[1]
+        if result[2] >= 0:
+            trees_count[g] = result[2]
+            if strings:  # else they were not computed (-1): left alone, as by the fast path
+                depth[g], tree_length[g] = result[3], result[4]
 
 
 @njit(inline="always")

@@ -310,19 +310,21 @@ def _rotation(n, off, nb, rot):
 
 @njit
 def _validate(n, off, nb, adj, err):
-    """Status of one grain, with the reason in ``err``; fills the n x n matrix ``adj``."""
+    """``(status, one_way)`` of one grain, with the reason in ``err``; fills the n x n matrix
+    ``adj``. ``one_way``: an ok grain's lists are cyclic and turn one way as given, so that
+    they are its rotation lists (:func:`_rotation` would give them back unchanged)."""
     status = _check_lists(n, off, nb, err)
     if status != OK:
-        return status
+        return status, False
     skip = np.zeros(n, np.bool_)
     lost = _first_unreached(n, off, nb, skip)
     if lost >= 0:
         err[0], err[1], err[2] = E_DISCONNECTED, lost, 0
-        return INVALID
+        return INVALID, False
     edges = off[n] // 2
     if edges > 3 * n - 6:
         err[0], err[1], err[2] = E_TOO_MANY_EDGES, edges, 3 * n - 6
-        return INVALID
+        return INVALID, False
     adj[:, :] = 0
     for v in range(n):
         for i in range(off[v], off[v + 1]):
@@ -335,15 +337,15 @@ def _validate(n, off, nb, adj, err):
         chi = n - edges + _trace_faces(n, off, nb, sign, longest)
         if chi == 2:
             if edges == 3 * n - 6:
-                return OK
+                return OK, bool(np.all(sign > 0))
             err[0], err[1], err[2] = E_NON_SIMPLE, longest[0], longest[1]
-            return NON_SIMPLE
+            return NON_SIMPLE, False
     if edges == 3 * n - 6:
         if _embed_triangulation(n, off, nb, adj, err, np.full((n, n, 2), -1, np.int32)):
-            return OK
-        return INVALID
+            return OK, False
+        return INVALID, False
     if consistent:
         err[0], err[1], err[2] = E_EULER, chi, 0
     else:
         err[0], err[1], err[2] = E_UNORDERED, edges, 3 * n - 6
-    return INVALID
+    return INVALID, False
