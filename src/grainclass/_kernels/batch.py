@@ -217,11 +217,10 @@ def _validate_pending_batch(
     tree_length,
 ):
     """The grains ``grains[first:last]`` that the fast path left (outputs as in
-    :func:`_classify_batch`; ``consistent`` marks those whose lists turn one way as given, where
-    the fast path left a grain of more than 64 faces): each is validated with its diagnosis
-    (``validate.py``), and an ok
-    one of at most ``max_small`` faces, whose lists were only out of the fast path's order
-    (turning both ways, or in no cyclic order), is classified on bitsets as by the fast path.
+    :func:`_classify_batch`; ``consistent`` marks those whose lists turn one way as given, as a
+    grain of more than 64 faces may): each is validated with its diagnosis (``validate.py``),
+    and an ok one of at most ``max_small`` faces, whose lists were only out of the fast path's
+    order (turning both ways, or in no cyclic order), is classified on bitsets as by the fast path.
     Larger ok grains stay PENDING, for :func:`_classify_general_batch`. A kernel of its own, so
     that the general classification (``reduce.py``, ``belts.py``, ``trees._forest_string``) is
     compiled only once a grain of more than 64 faces needs it: a first run on a simulation's

@@ -60,7 +60,7 @@ def sniff(head: bytes) -> str:
     Face-vertex-loop text looks like adjacency text: it is read only with ``--format loops``.
     A Parquet table or a compressed file is ``not grains``: :func:`read_dataset` says why.
     """
-    if _not_grains(head):
+    if not_grains(head):
         return "not grains"
     head = head.removeprefix(_BOM)
     if _returns_alone(head):
@@ -81,7 +81,7 @@ def _returns_alone(head: bytes) -> bool:
     return b"\r" in head and b"\n" not in head
 
 
-def _not_grains(head: bytes, file_only: bool = False) -> str | None:
+def not_grains(head: bytes, file_only: bool = False) -> str | None:
     """What an input that holds no grains is, from its first bytes; None for anything else.
     ``file_only``: the input must be a file (Surface Evolver), so a compressed one is to be
     decompressed into another file, not into a pipe."""
@@ -384,7 +384,7 @@ def read_dataset(
             fmt = formats[k - 1] or sniff(head)
             # Named as a text format or not, UTF-16, a compressed file or a Parquet table is
             # refused for what it is (planar_code is bytes: its records may start like them).
-            why = None if fmt == "planar_code" else _not_grains(head)
+            why = None if fmt == "planar_code" else not_grains(head)
             if why:
                 raise InputError(path, why)
             if fmt != "planar_code" and head.startswith(_BOM):

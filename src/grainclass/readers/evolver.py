@@ -463,13 +463,13 @@ _NO_BODIES = (
 
 def _read_file(path: str, triple_edges: tuple[str, str]) -> list[_Grain]:
     """The grains of one datafile (a malformed file is one bad grain, not a failed run)."""
-    stem = path.rsplit("/", 1)[-1].removesuffix(".fe")
-    from grainclass.readers import SNIFF_BYTES, _not_grains  # which imports this module
+    from grainclass.readers import SNIFF_BYTES, not_grains  # a package that imports this module
 
+    stem = path.rsplit("/", 1)[-1].removesuffix(".fe")
     try:
         with open(path, "rb") as handle:
             raw = handle.read()
-        why = _not_grains(raw[:SNIFF_BYTES], file_only=True)
+        why = not_grains(raw[:SNIFF_BYTES], file_only=True)
         if why:  # UTF-16, compressed, Parquet: said so, not read as a file of no bodies
             return [_Grain(stem, path, 1, error=why)]
         text = raw.decode("utf-8-sig", errors="replace")
