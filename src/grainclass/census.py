@@ -608,20 +608,29 @@ def dask_client(scheduler: str | None = None, workers: int | None = None) -> Ite
         with Client(scheduler) as client:
             yield client
         return
-    with (
-        LocalCluster(
-            n_workers=workers or os.cpu_count() or 1,
-            threads_per_worker=1,
-            processes=True,
-            # No dashboard (bokeh is not a dependency); the scheduler's small HTTP server
-            # listens on a free local port, so that several clusters can run at once.
-            dashboard_address="127.0.0.1:0",
-            silence_logs=logging.ERROR,  # a worker restarted after a loss is not news here
-            preload=[__name__],  # dask_setup, below
-        ) as cluster,
-        Client(cluster) as client,
-    ):
-        yield client
+    # A worker restarted after a loss is not news here. silence_logs holds Dask's logs to errors
+    # while the cluster runs, not while it closes: a census stopped by Ctrl-C logged its links
+    # to the workers closing, with tracebacks. They are held so until the cluster is gone.
+    logs = logging.getLogger("distributed")
+    level = logs.level
+    logs.setLevel(logging.ERROR)
+    try:
+        with (
+            LocalCluster(
+                n_workers=workers or os.cpu_count() or 1,
+                threads_per_worker=1,
+                processes=True,
+                # No dashboard (bokeh is not a dependency); the scheduler's small HTTP server
+                # listens on a free local port, so that several clusters can run at once.
+                dashboard_address="127.0.0.1:0",
+                silence_logs=logging.ERROR,
+                preload=[__name__],  # dask_setup, below
+            ) as cluster,
+            Client(cluster) as client,
+        ):
+            yield client
+    finally:
+        logs.setLevel(level)
 
 
 def dask_setup(worker: object) -> None:
