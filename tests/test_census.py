@@ -18,7 +18,7 @@ from pathlib import Path
 import pandas as pd
 import pytest
 
-from conftest import ctrl_c_at_a_terminal
+from conftest import ctrl_c_at_a_terminal, has_children
 from grainclass.census import (
     CHECKS,
     CensusProgress,
@@ -173,15 +173,18 @@ def test_interrupted_census_resumes_where_it_stopped(tmp_path, plantri):
     assert tuple(int(row[c]) for c in CLASS_COLUMNS) == TABLE_II[12]
 
 
-def test_ctrl_c_at_a_terminal_ends_the_census_and_its_workers_quietly(tmp_path, plantri):
-    """Ctrl-C reaches the Dask workers too, each at its part: they end quietly (each printed a
-    page of traceback), the census exits 130 and its plantri runs end with it."""
+@pytest.mark.parametrize("moment", ["workers starting", "parts running"])
+def test_ctrl_c_at_a_terminal_ends_the_census_and_its_workers_quietly(tmp_path, plantri, moment):
+    """Ctrl-C reaches the Dask workers too, starting up or each at its part: they end quietly
+    (each printed a page of traceback), the census exits 130 and its plantri runs end with it."""
     slow = _fake_plantri(tmp_path, "slow-plantri", plantri, 'case "$*" in *7/8*) sleep 30;; esac')
     out = tmp_path / "census"
     args = ["12", "--parts", "8", "--workers", "2", "-o", str(out), "--plantri", slow]
-    code, err = ctrl_c_at_a_terminal(
-        "census", *args, when=lambda pid: len(list(out.glob("parts/*.parquet"))) >= 2
-    )
+    when = {
+        "workers starting": has_children,
+        "parts running": lambda pid: len(list(out.glob("parts/*.parquet"))) >= 2,
+    }[moment]
+    code, err = ctrl_c_at_a_terminal("census", *args, when=when)
     assert code == 130, err
     assert "Traceback" not in err
     assert "grainclass: interrupted" in err

@@ -12,6 +12,7 @@ minimum degree 4 (``-m4``: flag plus sc, the fundamental ones).
 
 from __future__ import annotations
 
+import contextlib
 import json
 import logging
 import math
@@ -608,6 +609,8 @@ def dask_client(scheduler: str | None = None, workers: int | None = None) -> Ite
         with Client(scheduler) as client:
             yield client
         return
+    from grainclass.parallel import interrupts_blocked
+
     # A worker restarted after a loss is not news here. silence_logs holds Dask's logs to errors
     # while the cluster runs, not while it closes: a census stopped by Ctrl-C logged its links
     # to the workers closing, with tracebacks. They are held so until the cluster is gone.
@@ -615,20 +618,25 @@ def dask_client(scheduler: str | None = None, workers: int | None = None) -> Ite
     level = logs.level
     logs.setLevel(logging.ERROR)
     try:
-        with (
-            LocalCluster(
-                n_workers=workers or os.cpu_count() or 1,
-                threads_per_worker=1,
-                processes=True,
-                # No dashboard (bokeh is not a dependency); the scheduler's small HTTP server
-                # listens on a free local port, so that several clusters can run at once.
-                dashboard_address="127.0.0.1:0",
-                silence_logs=logging.ERROR,
-                preload=[__name__],  # dask_setup, below
-            ) as cluster,
-            Client(cluster) as client,
-        ):
-            yield client
+        with contextlib.ExitStack() as stack:
+            # The workers start (from Dask's threads, which take this thread's signal mask)
+            # with Ctrl-C held back until they take it up (dask_setup, below); here it is held
+            # until the cluster is up and will be closed on the way out.
+            with interrupts_blocked():
+                cluster = stack.enter_context(
+                    LocalCluster(
+                        n_workers=workers or os.cpu_count() or 1,
+                        threads_per_worker=1,
+                        processes=True,
+                        # No dashboard (bokeh is not a dependency); the scheduler's small HTTP
+                        # server listens on a free local port, so that several clusters can run
+                        # at once.
+                        dashboard_address="127.0.0.1:0",
+                        silence_logs=logging.ERROR,
+                        preload=[__name__],
+                    )
+                )
+            yield stack.enter_context(Client(cluster))
     finally:
         logs.setLevel(level)
 
@@ -636,9 +644,7 @@ def dask_client(scheduler: str | None = None, workers: int | None = None) -> Ite
 def dask_setup(worker: object) -> None:
     """Run by each worker process of :func:`dask_client`'s local cluster once it has started:
     Ctrl-C ends it at once and quietly (``parallel.end_quietly_on_interrupt``), where each
-    worker printed a page of traceback. Dask starts its workers from threads of its own, whose
-    signal mask :func:`grainclass.parallel.interrupts_blocked` does not reach: a Ctrl-C in the
-    second or so while they import still ends them with a traceback."""
+    worker printed a page of traceback."""
     from grainclass.parallel import end_quietly_on_interrupt
 
     end_quietly_on_interrupt()

@@ -110,6 +110,12 @@ def interrupts_blocked() -> Iterator[None]:
     if not hasattr(signal, "pthread_sigmask"):  # Windows
         yield
         return
+    from multiprocessing import resource_tracker
+
+    # multiprocessing's resource tracker, started with the first worker of a process, unblocks
+    # SIGINT in the thread that starts it, for every worker started after it there: started
+    # before the mask, it leaves it alone.
+    resource_tracker.ensure_running()
     before = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
     try:
         yield
