@@ -35,8 +35,16 @@ def _bitmap(valid: np.ndarray | None) -> pa.Buffer | None:
 def numbers(values: np.ndarray, type_: pa.DataType, valid: np.ndarray | None = None) -> pa.Array:
     """An integer or float column of ``type_``, null where not ``valid``; values must fit
     ``type_`` (they are cast as numpy casts, unchecked)."""
-    data = np.ascontiguousarray(values, type_.to_pandas_dtype())
+    data = np.ascontiguousarray(values, _numpy_dtype(type_))
     return pa.Array.from_buffers(type_, len(data), [_bitmap(valid), pa.py_buffer(data)])
+
+
+def _numpy_dtype(type_: pa.DataType) -> np.dtype:
+    """The numpy dtype of a fixed-width integer or float type: ``type_.to_pandas_dtype()``
+    imports pandas to answer in older pyarrow (15 to 18, of those tried)."""
+    signed = "i" if pa.types.is_signed_integer(type_) else "u"
+    kind = "f" if pa.types.is_floating(type_) else signed
+    return np.dtype(f"{kind}{type_.bit_width // 8}")
 
 
 def floats(values: np.ndarray) -> pa.Array:
