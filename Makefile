@@ -6,7 +6,7 @@ STAMP := $(VENV)/.installed-stamp
 KERNELS := $(wildcard src/grainclass/_kernels/*.py) src/grainclass/_numba.py
 KERNELS_STAMP := build/.kernels-stamp
 
-.PHONY: all install demo test test-nojit lint bench reproduce-enumeration reproduce-voronoi reproduce-census bench-census clean
+.PHONY: all install demo test test-nojit test-lowest lint bench reproduce-enumeration reproduce-voronoi reproduce-census bench-census clean
 
 all: lint test
 
@@ -22,7 +22,7 @@ $(STAMP): pyproject.toml
 # newer than the last run, the caches go.
 $(KERNELS_STAMP): $(KERNELS)
 	find src -name '*.nbi' -delete -o -name '*.nbc' -delete
-	rm -rf build/numba-cache
+	rm -rf build/numba-cache build/lowest-numba-cache
 	@mkdir -p build
 	touch $@
 
@@ -39,6 +39,13 @@ test: install
 # Coverage-style run of the kernels as plain Python (slow): catches code that only works jitted.
 test-nojit: install
 	NUMBA_DISABLE_JIT=1 $(BIN)/python -m pytest -m "not slow" -q -p no:cacheprovider --cov=grainclass --cov-report=term-missing:skip-covered
+
+# The whole suite against the lowest versions pyproject.toml allows, in a venv of its own
+# (build/lowest), so that its ranges are ranges that were tested.
+test-lowest: $(KERNELS_STAMP)
+	test -x build/lowest/bin/python || $(PYTHON) -m venv build/lowest
+	build/lowest/bin/python -m pip install --quiet --disable-pip-version-check -c lowest-dependencies.txt -e '.[test]'
+	NUMBA_CACHE_DIR=build/lowest-numba-cache build/lowest/bin/python -m pytest -q -p no:cacheprovider
 
 lint: install
 	$(BIN)/python -m pip install --quiet --disable-pip-version-check -e '.[lint]'

@@ -10,7 +10,8 @@ from click.testing import CliRunner
 from grainclass.cli import cli
 from grainclass.schema import GRAIN_SCHEMA
 
-README = (Path(__file__).resolve().parent.parent / "README.md").read_text()
+ROOT = Path(__file__).resolve().parent.parent
+README = (ROOT / "README.md").read_text()
 
 
 @pytest.mark.parametrize("command", sorted(cli.commands))
@@ -34,3 +35,25 @@ def test_readme_documents_every_output_column(column):
 @pytest.mark.parametrize("command", sorted(cli.commands))
 def test_readme_documents_every_command(command):
     assert f"grainclass {command}" in README
+
+
+def test_make_test_lowest_pins_the_lower_bounds_of_pyproject():
+    """``make test-lowest`` installs lowest-dependencies.txt: each runtime dependency at the
+    lowest version pyproject.toml allows, and no other."""
+    import tomllib
+
+    from packaging.requirements import Requirement
+    from packaging.version import Version
+
+    project = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]
+    lowest = {}
+    for line in project["dependencies"]:
+        requirement = Requirement(line)
+        (bound,) = [s.version for s in requirement.specifier if s.operator in (">=", "==")]
+        lowest[requirement.name] = Version(bound)
+    pinned = {}
+    for line in (ROOT / "lowest-dependencies.txt").read_text().splitlines():
+        if line and not line.startswith("#"):
+            name, version = line.split("==")
+            pinned[name] = Version(version)
+    assert pinned == lowest
