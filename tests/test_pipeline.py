@@ -85,3 +85,24 @@ def test_map_ordered_keeps_order_and_raises_a_workers_error_in_its_place():
             next(stream)
     finally:
         set_jobs(before)
+
+
+def _end_worker():
+    import os
+
+    os._exit(130)  # as a worker pool's worker ends on Ctrl-C
+
+
+def test_stopping_the_worker_pools_waits_for_a_broken_pool_to_be_torn_down():
+    """Workers that Ctrl-C ended leave their pool broken, its thread closing the pipe that wakes
+    it; the interpreter's exit must not find that still under way (Python 3.11 then wrote into
+    the closing pipe and printed a traceback). An interrupted command stops its pools first."""
+    from concurrent.futures.process import BrokenProcessPool, _ExecutorManagerThread
+
+    from grainclass.parallel import stop_worker_pools, worker_pool
+
+    pool = worker_pool(1)
+    with pytest.raises(BrokenProcessPool):
+        pool.submit(_end_worker).result(timeout=60)
+    stop_worker_pools()
+    assert not any(isinstance(t, _ExecutorManagerThread) for t in threading.enumerate())

@@ -710,6 +710,14 @@ def _stop(signum: int, frame: object) -> None:
     raise KeyboardInterrupt if signum == signal.SIGINT else _Stopped(signum)
 
 
+def _stop_worker_pools() -> None:
+    """Worker processes of an interrupted run, if it started any, stopped before exit."""
+    if "grainclass.parallel" in sys.modules:  # else none was started
+        from grainclass.parallel import stop_worker_pools
+
+        stop_worker_pools()
+
+
 def main() -> None:
     """Entry point: click's handling, except that Ctrl-C exits 130 as shells expect, and
     SIGTERM and SIGHUP (``timeout``, a batch scheduler, a closed terminal) 143 and 129."""
@@ -739,9 +747,11 @@ def main() -> None:
     except (click.Abort, KeyboardInterrupt):
         click.echo("grainclass: interrupted", err=True)
         code = 130
+        _stop_worker_pools()
     except _Stopped as stop:
         click.echo(f"grainclass: stopped by {signal.Signals(stop.signum).name}", err=True)
         code = 128 + stop.signum
+        _stop_worker_pools()
     global _stopping
     _stopping = True  # all is done: a signal now would only end the shutdown in a traceback
     sys.exit(code if isinstance(code, int) else 0)

@@ -15,6 +15,7 @@ import itertools
 import os
 import signal
 import threading
+import weakref
 from collections.abc import Callable, Iterable, Iterator
 from concurrent.futures import Future, ProcessPoolExecutor, ThreadPoolExecutor
 from typing import TypeVar
@@ -123,15 +124,30 @@ def interrupts_blocked() -> Iterator[None]:
         signal.pthread_sigmask(signal.SIG_SETMASK, before)
 
 
+_worker_pools: weakref.WeakSet[ProcessPoolExecutor] = weakref.WeakSet()
+
+
 def worker_pool(workers: int) -> ProcessPoolExecutor:
     """Spawned worker processes (not forked: the parent may be running compiled kernels in
     threads) that end at once and quietly on Ctrl-C, where ignoring it kept their parent
-    waiting for their tasks. Start them (submit or map) within :func:`interrupts_blocked`."""
+    waiting for their tasks. Start them (submit or map) within :func:`interrupts_blocked`;
+    an interrupted command stops the pools with :func:`stop_worker_pools`."""
     from multiprocessing import get_context
 
-    return ProcessPoolExecutor(
+    pool = ProcessPoolExecutor(
         workers, mp_context=get_context("spawn"), initializer=end_quietly_on_interrupt
     )
+    _worker_pools.add(pool)
+    return pool
+
+
+def stop_worker_pools() -> None:
+    """Shut down every pool of :func:`worker_pool` still open, and wait for it. A pool whose
+    workers Ctrl-C ended is broken, and its thread closes its wake-up pipe as it ends: were
+    that still under way as the interpreter exits, Python 3.11's exit hook could write into the
+    pipe as it closes, and print a traceback (Bad file descriptor)."""
+    for pool in list(_worker_pools):
+        pool.shutdown(wait=True, cancel_futures=True)
 
 
 def end_quietly_on_interrupt(*_: object) -> None:
