@@ -28,6 +28,12 @@ def isoperimetric_quotient(volume, area):
         return 36 * np.pi * ratio * ratio / area
 
 
+def no_body_has(volume: float, area: float) -> bool:
+    """True for a volume and a surface area that no body has together: 36 pi V^2 > S^3, past
+    rounding (Q > 1 + 1e-6). False where either is NaN. The readers refuse such a pair."""
+    return bool(isoperimetric_quotient(volume, area) > 1 + 1e-6)
+
+
 @dataclass(frozen=True)
 class GrainBatch:
     """Grains from one input, as CSR arrays of face adjacencies.

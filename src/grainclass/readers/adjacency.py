@@ -14,7 +14,7 @@ from collections.abc import Iterable, Iterator, Sequence
 
 import numpy as np
 
-from grainclass.batch import GrainBatch, isoperimetric_quotient, offsets_from_counts, run_indices
+from grainclass.batch import GrainBatch, no_body_has, offsets_from_counts, run_indices
 
 FLOAT_KEYS = ("volume", "area")
 BOOLEANS = {"1": 1, "true": 1, "yes": 1, "0": 0, "false": 0, "no": 0}
@@ -202,7 +202,7 @@ def key_values(
             continue
         floats[key] = value
     volume, area = floats["volume"], floats["area"]
-    if isoperimetric_quotient(volume, area) > 1 + 1e-6:  # False with a NaN
+    if no_body_has(volume, area):
         errors.append(f"volume={volume:g} and area={area:g} cannot both be right (36 pi V^2 > S^3)")
         floats["volume"] = floats["area"] = np.nan
     flag = values.pop("boundary", None)

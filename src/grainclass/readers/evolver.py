@@ -26,7 +26,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from grainclass.batch import GrainBatch, csr_from_lists, isoperimetric_quotient, tri_state
+from grainclass.batch import GrainBatch, csr_from_lists, no_body_has, tri_state
 from grainclass.errors import InputError
 from grainclass.parallel import interrupts_blocked, worker_pool
 
@@ -307,7 +307,7 @@ def _checked_volume(body: int, volume: float, area: float) -> float:
     not a finite number 0 or more, or more than a ball of the surface's area holds."""
     if not (math.isfinite(volume) and volume >= 0):
         raise GrainError(f"body {body}: volume {volume:g}: expected a finite number, 0 or more")
-    if isoperimetric_quotient(volume, area) > 1 + 1e-6:
+    if no_body_has(volume, area):
         raise GrainError(
             f"body {body}: volume {volume:g} is more than a surface of area {area:g} can hold "
             "(36 pi V^2 > S^3)"

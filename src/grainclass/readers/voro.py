@@ -14,7 +14,7 @@ from collections.abc import Iterable, Iterator
 
 import numpy as np
 
-from grainclass.batch import GrainBatch, isoperimetric_quotient
+from grainclass.batch import GrainBatch, no_body_has
 from grainclass.readers.loops import LoopText
 
 LINE = re.compile(rb"^\s*-?\d+(\s+[-+0-9.eE]+){0,2}\s+\(\s*\d+(\s*,\s*\d+)*\s*\)")
@@ -61,7 +61,7 @@ def read_voro(lines: Iterable[bytes], source: str, chunk_size: int) -> Iterator[
             # No body has 36 pi V^2 > S^3: the two numbers are not %v then %F (a "%i %F %v %t"
             # file would otherwise give every grain the other's volume and area).
             volume, area = numbers[0], numbers[1]
-            if isoperimetric_quotient(volume, area) > 1 + 1e-6:
+            if no_body_has(volume, area):
                 message = (
                     f"volume {volume:g} and area {area:g} cannot both be right "
                     '(36 pi V^2 > S^3): expected a cell as voro++ -c "%i %v %F %t" writes it'
