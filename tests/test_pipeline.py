@@ -106,3 +106,4 @@ def test_stopping_the_worker_pools_waits_for_a_broken_pool_to_be_torn_down():
         pool.submit(_end_worker).result(timeout=60)
     stop_worker_pools()
     assert not any(isinstance(t, _ExecutorManagerThread) for t in threading.enumerate())
+

@@ -128,17 +128,27 @@ def interrupts_blocked() -> Iterator[None]:
         signal.pthread_sigmask(signal.SIG_SETMASK, before)
 
 
+class _WorkerPool(ProcessPoolExecutor):
+    """Each submission (map's too) within :func:`interrupts_blocked`: a submission may start a
+    worker, so every worker starts with Ctrl-C held back, whichever call starts it."""
+
+    def submit(self, fn, /, *args, **kwargs):  # type: ignore[override]
+        with interrupts_blocked():
+            return super().submit(fn, *args, **kwargs)
+
+
+
 _worker_pools: weakref.WeakSet[ProcessPoolExecutor] = weakref.WeakSet()
 
 
 def worker_pool(workers: int) -> ProcessPoolExecutor:
     """Spawned worker processes (not forked: the parent may be running compiled kernels in
     threads) that end at once and quietly on Ctrl-C, where ignoring it kept their parent
-    waiting for their tasks. Start them (submit or map) within :func:`interrupts_blocked`;
-    an interrupted command stops the pools with :func:`stop_worker_pools`."""
+    waiting for their tasks; an interrupted command stops the pools with
+    :func:`stop_worker_pools`."""
     from multiprocessing import get_context
 
-    pool = ProcessPoolExecutor(
+    pool = _WorkerPool(
         workers, mp_context=get_context("spawn"), initializer=end_quietly_on_interrupt
     )
     _worker_pools.add(pool)

@@ -210,14 +210,13 @@ def _check_spacing(points: np.ndarray, side: float) -> None:
 def _tessellate_slabs(points: np.ndarray, side: float, slabs: int, margin: float) -> Iterator[dict]:
     """Every slab's grains (:func:`_slab`), bottom to top, computed on worker processes; a slab
     where a corner's empty sphere left the seeds present is done again with twice the margin."""
-    from grainclass.parallel import get_jobs, interrupts_blocked, worker_pool
+    from grainclass.parallel import get_jobs, worker_pool
 
     pool = worker_pool(min(get_jobs(), slabs))
     try:
-        with interrupts_blocked():  # the submissions start the workers
-            futures: list[Future | None] = [
-                pool.submit(_slab, points, side, k, slabs, margin) for k in range(slabs)
-            ]
+        futures: list[Future | None] = [
+            pool.submit(_slab, points, side, k, slabs, margin) for k in range(slabs)
+        ]
         for k, future in enumerate(futures):
             assert future is not None
             futures[k] = None  # the result goes once its grains are out

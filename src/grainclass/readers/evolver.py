@@ -28,7 +28,7 @@ import numpy as np
 
 from grainclass.batch import GrainBatch, csr_from_lists, no_body_has, tri_state
 from grainclass.errors import InputError
-from grainclass.parallel import interrupts_blocked, worker_pool
+from grainclass.parallel import worker_pool
 
 # A datafile's sections, and what one numbered line of each is called in messages.
 SECTIONS = {
@@ -444,8 +444,7 @@ def read_evolver(
             # Parsing is pure Python: a folder of dumps is read by one process per core.
             pool = worker_pool(os.cpu_count() or 1)
             stack.callback(pool.shutdown, wait=True, cancel_futures=True)
-            with interrupts_blocked():  # map starts the workers
-                per_file = pool.map(read, paths, chunksize=16)
+            per_file = pool.map(read, paths, chunksize=16)
         for file_grains in per_file:
             grains += file_grains
             if len(grains) >= chunk_size:
