@@ -107,3 +107,30 @@ def test_stopping_the_worker_pools_waits_for_a_broken_pool_to_be_torn_down():
     stop_worker_pools()
     assert not any(isinstance(t, _ExecutorManagerThread) for t in threading.enumerate())
 
+
+def test_a_broken_worker_pool_may_be_shut_down_from_two_threads_at_once():
+    """An interrupted command's stop_worker_pools and the pool's own user (a reader in another
+    thread) may shut a pool down at once: two shutdowns closed its result queue twice (Bad file
+    descriptor), 8 times in 40 such pools here before they took turns."""
+    from concurrent.futures.process import BrokenProcessPool
+
+    from grainclass.parallel import worker_pool
+
+    errors: list[OSError] = []
+
+    def shut_down(pool) -> None:
+        try:
+            pool.shutdown(wait=True, cancel_futures=True)
+        except OSError as exc:
+            errors.append(exc)
+
+    for _ in range(20):
+        pool = worker_pool(1)
+        with pytest.raises(BrokenProcessPool):
+            pool.submit(_end_worker).result(timeout=60)
+        both = [threading.Thread(target=shut_down, args=(pool,)) for _ in range(2)]
+        for thread in both:
+            thread.start()
+        for thread in both:
+            thread.join()
+    assert errors == []

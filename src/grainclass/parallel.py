@@ -130,12 +130,22 @@ def interrupts_blocked() -> Iterator[None]:
 
 class _WorkerPool(ProcessPoolExecutor):
     """Each submission (map's too) within :func:`interrupts_blocked`: a submission may start a
-    worker, so every worker starts with Ctrl-C held back, whichever call starts it."""
+    worker, so every worker starts with Ctrl-C held back, whichever call starts it. Shut down
+    one caller at a time: an interrupted command's :func:`stop_worker_pools` and the pool's own
+    user may both shut it down, and two at once closed its result queue twice (Python 3.11: Bad
+    file descriptor)."""
+
+    def __init__(self, *args, **kwargs) -> None:
+        super().__init__(*args, **kwargs)
+        self._shutting_down = threading.Lock()
 
     def submit(self, fn, /, *args, **kwargs):  # type: ignore[override]
         with interrupts_blocked():
             return super().submit(fn, *args, **kwargs)
 
+    def shutdown(self, wait: bool = True, *, cancel_futures: bool = False) -> None:
+        with self._shutting_down:
+            super().shutdown(wait=wait, cancel_futures=cancel_futures)
 
 
 _worker_pools: weakref.WeakSet[ProcessPoolExecutor] = weakref.WeakSet()
