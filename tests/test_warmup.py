@@ -3,6 +3,7 @@
 
 from __future__ import annotations
 
+import io
 import json
 import os
 import subprocess
@@ -53,6 +54,67 @@ def test_helper_compiles_the_kernels_classify_calls_last_with_its_signatures(tmp
     compiled = json.loads(done.stdout)
     assert not set(FIRST) & set(compiled), compiled
     assert "_classify_batch" in compiled  # what the helper leaves to the end is compiled here
+
+
+GENERAL_FIRST = """
+from grainclass.batch import GrainBatch
+from grainclass.warmup import PRISM, _general_first
+_general_first(GrainBatch.from_lists([PRISM]))
+"""
+
+
+def test_helper_told_of_a_large_grain_compiles_the_general_classification_with_its_signature(
+    tmp_path,
+):
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path / "cache"))
+    text = tmp_path / "prism.txt"
+    k = 66  # a 66-gonal prism: 68 faces
+    faces = [[k, (i - 1) % k, k + 1, (i + 1) % k] for i in range(k)]
+    faces += [list(range(k)), list(reversed(range(k)))]
+    text.write_text("p\t" + ";".join(" ".join(map(str, face)) for face in faces) + "\n")
+    subprocess.run([sys.executable, "-c", GENERAL_FIRST], env=env, check=True)
+    done = subprocess.run(
+        [sys.executable, "-c", RECORD, str(text)], env=env, check=True, capture_output=True
+    )
+    compiled = json.loads(done.stdout)
+    assert "_classify_general_batch" not in compiled, compiled
+    assert "_validate_pending_batch" in compiled  # left to the run, which needs it first
+
+
+@pytest.mark.parametrize(
+    ("sizes", "told"),
+    [([], b""), ([6], b""), ([6, 67], b""), ([67], b"general\n"), ([67, 6], b"general\n")],
+)
+def test_the_first_batch_tells_the_helper_whether_the_general_classification_comes_first(
+    monkeypatch, sizes, told
+):
+    """Batches of one grain each, of the given sizes (a cube, a 65-gonal prism): only a large
+    grain in the first batch sends the helper to the general classification first."""
+    import grainclass.warmup as warmup
+    from grainclass.batch import GrainBatch
+
+    heard: list[bytes] = []
+
+    class Pipe(io.BytesIO):
+        def close(self) -> None:
+            if not self.closed:
+                heard.append(self.getvalue())
+            super().close()
+
+    class Helper:
+        def __init__(self, *args, **kwargs) -> None:
+            self.stdin = Pipe()
+
+        def wait(self, timeout=None) -> int:
+            return 0
+
+    monkeypatch.setattr(warmup, "cold", lambda kernel: True)
+    monkeypatch.setattr(warmup.subprocess, "Popen", Helper)
+    batches = [GrainBatch.from_lists([warmup.CUBE if n == 6 else warmup.PRISM]) for n in sizes]
+    assert [len(b.n_faces) and int(b.n_faces[0]) for b in batches] == sizes
+    with warmup.compiling_from_both_ends(jobs=2, types=True) as watch:
+        assert list(watch(batches)) == batches
+    assert heard == [told]
 
 
 def test_a_kernel_never_compiled_is_cold_and_a_cached_one_is_not(tmp_path):

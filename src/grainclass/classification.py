@@ -166,11 +166,7 @@ class _Classified:
 def _classify_csr(batch: GrainBatch, max_small: int, strings: bool) -> _Classified:
     """The fast path over the batch, then the general validation over the grains it left,
     then the general classification over the ok ones of more than ``max_small`` faces."""
-    from grainclass._kernels.batch import (
-        _classify_batch,
-        _classify_general_batch,
-        _validate_pending_batch,
-    )
+    from grainclass._kernels.batch import _classify_batch, _validate_pending_batch
 
     out = _Classified.empty(batch, strings)
     csr = (batch.face_offsets, batch.nbr_offsets, batch.neighbors)
@@ -206,17 +202,35 @@ def _classify_csr(batch: GrainBatch, max_small: int, strings: bool) -> _Classifi
         )
         pending = pending[out.status[pending] == codes.PENDING]
     if len(pending):
-        run_ranges(
-            _classify_general_batch,
-            len(pending),
-            pending,
-            *csr,
-            strings,
-            out.status,
-            *rows,
-            *strings_out,
-        )
+        _classify_general(batch, out, pending, strings)
     return out
+
+
+def _classify_general(
+    batch: GrainBatch, out: _Classified, pending: np.ndarray, strings: bool
+) -> None:
+    """The general classification of the grains ``pending`` (int64 indices), validated and too
+    large for the fast path, into ``out``."""
+    from grainclass._kernels.batch import _classify_general_batch
+
+    run_ranges(
+        _classify_general_batch,
+        len(pending),
+        pending,
+        batch.face_offsets,
+        batch.nbr_offsets,
+        batch.neighbors,
+        strings,
+        out.status,
+        out.family,
+        out.fundamental,
+        out.n_trees,
+        out.depth,
+        out.belts,
+        out.tree_offsets,
+        out.tree_bytes,
+        out.tree_length,
+    )
 
 
 def grain_codes(batch: GrainBatch) -> GrainCodes:

@@ -82,8 +82,8 @@ def classified_tables(
     from grainclass.parallel import get_jobs
     from grainclass.warmup import compiling_from_both_ends
 
-    batches = prefetch(read_dataset(paths, format, chunk_size, triple_edges))
-    with compiling_from_both_ends(get_jobs(), types):
+    with compiling_from_both_ends(get_jobs(), types) as watch:
+        batches = prefetch(watch(read_dataset(paths, format, chunk_size, triple_edges)))
         yield from map_ordered(lambda batch: classify(batch, types=types), batches)
 
 
@@ -159,9 +159,9 @@ def tallies(
             continue
         # The Weinberg walks need the CSR lists; counting alone reads planar_code as bytes.
         batches = read_dataset([path], format, chunk_size, triple_edges, raw_planar_code=not types)
-        with compiling_from_both_ends(get_jobs(), types) if types else nullcontext():
+        with compiling_from_both_ends(get_jobs(), types) if types else nullcontext(iter) as watch:
             yield from map_ordered(
-                lambda batch: tally_batch(batch, include_boundary, types), prefetch(batches)
+                lambda batch: tally_batch(batch, include_boundary, types), prefetch(watch(batches))
             )
 
 
