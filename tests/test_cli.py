@@ -7,6 +7,7 @@ import json
 import os
 import subprocess
 import sys
+import time
 
 import pyarrow as pa
 import pyarrow.parquet as pq
@@ -497,6 +498,50 @@ def test_sigterm_and_sighup_leave_no_file_and_exit_128_plus_the_signal(tmp_path)
         _, err = run.communicate(timeout=60)
         assert run.returncode == 128 + signum
         assert f"stopped by {signal.Signals(signum).name}" in err.decode()
+        assert list(tmp_path.iterdir()) == []
+
+
+# A batch whose classification never ends, as numba compiling a kernel in a batch thread at a
+# first run does for seconds: the thread says when it has started.
+STUCK = """
+import sys, threading
+import grainclass.pipeline
+started = sys.argv[1]
+def stuck(batch, types=True):
+    open(started, "w").close()
+    threading.Event().wait()
+grainclass.pipeline.classify = stuck
+sys.argv = ["grainclass", "classify", *sys.argv[2:]]
+from grainclass.cli import main
+main()
+"""
+
+
+def test_a_stopped_run_exits_without_waiting_for_a_thread_still_busy(tmp_path):
+    """Interpreter exit waits for the threads of a pool: it waited out the compiling of a
+    kernel after Ctrl-C (seconds), and here would wait for ever."""
+    import signal
+
+    started = tmp_path / "started"
+    out = tmp_path / "out.parquet"
+    for signum, stopped in ((signal.SIGINT, "interrupted"), (signal.SIGTERM, "stopped by SIGTERM")):
+        args = [str(EXAMPLES / "polytopes.txt"), "-o", str(out), "--jobs", "2"]
+        run = subprocess.Popen(
+            [sys.executable, "-c", STUCK, str(started), *args], stderr=subprocess.PIPE
+        )
+        try:
+            deadline = time.monotonic() + 60
+            while not started.exists():
+                assert time.monotonic() < deadline
+                assert run.poll() is None
+                time.sleep(0.02)
+            os.kill(run.pid, signum)
+            _, err = run.communicate(timeout=60)
+        finally:
+            run.kill()  # a run that waits for ever goes when the test fails
+        assert run.returncode == 128 + signum
+        assert stopped in err.decode()
+        started.unlink()
         assert list(tmp_path.iterdir()) == []
 
 

@@ -11,7 +11,7 @@ import signal
 import sys
 import warnings
 from collections.abc import Iterable, Iterator, Sequence
-from contextlib import contextmanager, nullcontext
+from contextlib import contextmanager, nullcontext, suppress
 from typing import BinaryIO, TypeVar
 
 import click
@@ -739,6 +739,7 @@ def main() -> None:
         # and a shell, SIGINT for a job it starts in the background.
         if hasattr(signal, name) and signal.getsignal(getattr(signal, name)) != signal.SIG_IGN:
             signal.signal(getattr(signal, name), _stop)
+    stopped = False
     try:
         code = cli.main(standalone_mode=False)
     except click.ClickException as exc:
@@ -747,11 +748,28 @@ def main() -> None:
     except (click.Abort, KeyboardInterrupt):
         click.echo("grainclass: interrupted", err=True)
         code = 130
+        stopped = True
         _stop_worker_pools()
     except _Stopped as stop:
         click.echo(f"grainclass: stopped by {signal.Signals(stop.signum).name}", err=True)
         code = 128 + stop.signum
+        stopped = True
         _stop_worker_pools()
     global _stopping
     _stopping = True  # all is done: a signal now would only end the shutdown in a traceback
+    if stopped and _threads_busy():
+        # Stopped while a thread still runs a kernel, or numba compiles one at a first run:
+        # the interpreter's exit would wait for it, seconds after Ctrl-C. What the run began is
+        # undone already (its output file removed, its worker processes stopped), and nothing
+        # that thread does is needed.
+        with suppress(OSError, ValueError):
+            sys.stdout.flush()
+            sys.stderr.flush()
+        os._exit(code)
     sys.exit(code if isinstance(code, int) else 0)
+
+
+def _threads_busy() -> bool:
+    return (
+        "grainclass.parallel" in sys.modules and sys.modules["grainclass.parallel"].threads_busy()
+    )

@@ -30,6 +30,8 @@ R = TypeVar("R")
 _jobs = os.cpu_count() or 1
 _pools: dict[str, ThreadPoolExecutor] = {}
 _in_batch_worker = threading.local()
+_running = 0  # tasks of the thread pools under way
+_running_lock = threading.Lock()
 
 
 def set_jobs(jobs: int) -> None:
@@ -62,13 +64,30 @@ def run_ranges(kernel: Callable[..., object], n_items: int, *arrays: object) -> 
         kernel(0, n_items, *arrays)
         return
     pool = _pool("kernel")
-    for future in [pool.submit(kernel, a, b, *arrays) for a, b in ranges]:
+    for future in [pool.submit(_counted, kernel, a, b, *arrays) for a, b in ranges]:
         future.result()
+
+
+def _counted(function: Callable[..., R], *args: object) -> R:
+    global _running
+    with _running_lock:
+        _running += 1
+    try:
+        return function(*args)
+    finally:
+        with _running_lock:
+            _running -= 1
+
+
+def threads_busy() -> bool:
+    """Whether a task of the thread pools is still running: a kernel, or numba compiling one
+    (at a first run, seconds that nothing can cut short)."""
+    return _running > 0
 
 
 def _in_worker(function: Callable[[T], R], item: T) -> R:
     _in_batch_worker.active = True
-    return function(item)
+    return _counted(function, item)
 
 
 def map_ordered(function: Callable[[T], R], items: Iterable[T]) -> Iterator[R]:
