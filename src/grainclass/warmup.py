@@ -6,8 +6,8 @@ is cold and more than one job may run, a helper process classifies a cube with t
 called in the opposite order (the Weinberg walk first, the classification last) while the main
 process starts with the classification: each loads from numba's cache what the other has
 already written there, and the two meet in the middle. A first batch with a grain of more than
-64 faces needs the general classification too, which the main process reaches last: the helper
-is told so, and compiles that first.
+64 faces needs the general classification too, which the main process reaches after the general
+validation: the helper is told so, and compiles it right after the Weinberg walk.
 """
 
 from __future__ import annotations
@@ -48,7 +48,8 @@ def compiling_from_both_ends(
     is in the cache) and gets a moment to finish; if the body fails it is stopped at once.
 
     Yields ``watch``, which passes the run's batches through and, at the first, tells the helper
-    whether it needs the general classification (the helper waits for that before it compiles).
+    whether the run needs the general classification (the helper asks once it has compiled the
+    Weinberg walk, and waits for the answer).
     """
     from grainclass._kernels.batch import _classify_batch
     from grainclass._kernels.bits import MAX_BITSET_FACES
@@ -98,18 +99,36 @@ def compiling_from_both_ends(
             helper.wait()
 
 
-def fill_cache(types: bool, general: bool) -> None:
-    """The helper's work: the general classification first if ``general``, then the kernels
-    ``classify`` calls last, then ``classify`` itself (which by then finds most of them in the
-    cache)."""
+def fill_cache(types: bool, general: Callable[[], bool]) -> None:
+    """The helper's work: the kernels ``classify`` calls last (the general classification
+    among them if ``general()`` says so once the Weinberg walk is compiled), then ``classify``
+    itself on a cube (which by then finds its kernels in the cache)."""
     from grainclass.batch import GrainBatch
     from grainclass.classification import classify
 
-    batch = GrainBatch.from_lists([PRISM if general else CUBE])
-    if general:
-        _general_first(batch)
-    _last_kernels_first(batch, types)
+    batch = GrainBatch.from_lists([CUBE])
+    _last_kernels_first(batch, types, general)
     classify(batch, types=types)
+
+
+def _last_kernels_first(
+    batch: GrainBatch, types: bool, general: Callable[[], bool] = lambda: False
+) -> None:
+    """The Weinberg walk, the general classification if ``general()``, and the table's column
+    kernels, on made-up outputs of the classification (every grain ok): the calls and argument
+    types of ``classify`` itself. The main process, which starts with the fast path and the
+    general validation, needs the general classification before the table's columns."""
+    from grainclass._kernels import codes
+    from grainclass.batch import GrainBatch
+    from grainclass.classification import _Classified, _table, _types
+
+    out = _Classified.empty(batch, strings=True)
+    out.status[:] = codes.OK
+    out.consistent[:] = True
+    walked = _types(batch, out, types)
+    if general():
+        _general_first(GrainBatch.from_lists([PRISM]))
+    _table(batch, out, walked)
 
 
 def _general_first(batch: GrainBatch) -> None:
@@ -125,21 +144,10 @@ def _general_first(batch: GrainBatch) -> None:
     _classify_general(batch, out, np.flatnonzero(out.status == codes.PENDING), strings=True)
 
 
-def _last_kernels_first(batch: GrainBatch, types: bool) -> None:
-    """The Weinberg walk and the table's column kernels, on made-up outputs of the
-    classification (every grain ok): the calls and argument types of ``classify`` itself."""
-    from grainclass._kernels import codes
-    from grainclass.classification import _Classified, _table, _types
-
-    out = _Classified.empty(batch, strings=True)
-    out.status[:] = codes.OK
-    out.consistent[:] = True
-    _table(batch, out, _types(batch, out, types))
-
-
 if __name__ == "__main__":
-    # The run says, at its first batch, whether the general classification comes first; a run
-    # that ends without a batch closes the pipe, and the usual order follows.
+    # The run says, at its first batch, whether it needs the general classification; a run that
+    # ends without a batch closes the pipe.
     fill_cache(
-        types="--no-types" not in sys.argv[1:], general=sys.stdin.buffer.readline() == _GENERAL
+        types="--no-types" not in sys.argv[1:],
+        general=lambda: sys.stdin.buffer.readline() == _GENERAL,
     )
