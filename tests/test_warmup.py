@@ -58,9 +58,23 @@ def test_helper_compiles_the_kernels_classify_calls_last_with_its_signatures(tmp
 
 GENERAL_TOO = """
 from grainclass.batch import GrainBatch
-from grainclass.warmup import CUBE, _last_kernels_first
-_last_kernels_first(GrainBatch.from_lists([CUBE]), types=True, general=lambda: True)
+from grainclass.warmup import CUBE, GENERAL, _last_kernels_first
+_last_kernels_first(GrainBatch.from_lists([CUBE]), types=True, plan=lambda: GENERAL)
 """
+# The run compiles the general validation before its first batch, the helper the fast path.
+VALIDATION_FIRST = """
+from grainclass.batch import GrainBatch
+from grainclass.warmup import CUBE, VALIDATION, _last_kernels_first, _validation_first
+_validation_first()
+_last_kernels_first(GrainBatch.from_lists([CUBE]), types=True, plan=lambda: VALIDATION)
+"""
+
+
+def _prism(k: int) -> str:
+    """The k-gonal prism, a line of adjacency text: k + 2 faces."""
+    faces = [[k, (i - 1) % k, k + 1, (i + 1) % k] for i in range(k)]
+    faces += [list(range(k)), list(reversed(range(k)))]
+    return f"prism{k}\t" + ";".join(" ".join(map(str, face)) for face in faces) + "\n"
 
 
 def test_helper_told_of_a_large_grain_compiles_the_general_classification_with_its_signature(
@@ -68,10 +82,7 @@ def test_helper_told_of_a_large_grain_compiles_the_general_classification_with_i
 ):
     env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path / "cache"))
     text = tmp_path / "prism.txt"
-    k = 66  # a 66-gonal prism: 68 faces
-    faces = [[k, (i - 1) % k, k + 1, (i + 1) % k] for i in range(k)]
-    faces += [list(range(k)), list(reversed(range(k)))]
-    text.write_text("p\t" + ";".join(" ".join(map(str, face)) for face in faces) + "\n")
+    text.write_text(_prism(66))
     subprocess.run([sys.executable, "-c", GENERAL_TOO], env=env, check=True)
     done = subprocess.run(
         [sys.executable, "-c", RECORD, str(text)], env=env, check=True, capture_output=True
@@ -81,19 +92,46 @@ def test_helper_told_of_a_large_grain_compiles_the_general_classification_with_i
     assert "_validate_pending_batch" in compiled  # left to the run, which needs it first
 
 
+def test_the_validation_first_plan_compiles_what_a_run_with_bad_grains_calls(tmp_path):
+    """The run's general validation and the helper's fast path, with their signatures: a run on
+    a degenerate grain (a 2-gon) and a cube then compiles none of the batch kernels."""
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path / "cache"))
+    text = tmp_path / "grains.txt"
+    text.write_text("theta\t1 2;0 2;0 1\ncube\t1 2 3 4;0 4 5 2;0 1 5 3;0 2 5 4;0 3 5 1;1 4 3 2\n")
+    subprocess.run([sys.executable, "-c", VALIDATION_FIRST], env=env, check=True)
+    done = subprocess.run(
+        [sys.executable, "-c", RECORD, str(text)], env=env, check=True, capture_output=True
+    )
+    compiled = json.loads(done.stdout)
+    assert not {"_classify_batch", "_validate_pending_batch", *FIRST} & set(compiled), compiled
+
+
+TWO_GON = [[1, 2], [0, 2, 3], [0, 3, 1], [1, 2]]  # face 0 has two neighbours
+EXTRA = [[1, 2, 3, 4, 5], [0, 4, 5, 2], [0, 1, 5, 3], [0, 2, 5, 4], [0, 3, 5, 1], [1, 4, 3, 2]]
+
+
 @pytest.mark.parametrize(
-    ("sizes", "told"),
-    [([], b""), ([6], b""), ([6, 67], b""), ([67], b"general\n"), ([67, 6], b"general\n")],
+    ("grains", "told"),
+    [
+        ([], b""),
+        (["cube"], b""),
+        (["cube", "prism"], b""),
+        (["prism"], b"general\n"),
+        (["prism", "cube"], b"general\n"),
+        (["two-gon"], b"validation\n"),
+        (["extra", "cube"], b"validation\n"),
+        (["cube", "two-gon"], b""),
+    ],
 )
-def test_the_first_batch_tells_the_helper_whether_the_general_classification_comes_first(
-    monkeypatch, sizes, told
-):
-    """Batches of one grain each, of the given sizes (a cube, a 65-gonal prism): only a large
-    grain in the first batch sends the helper to the general classification first."""
+def test_the_first_batch_tells_the_helper_the_plan(monkeypatch, grains, told):
+    """Batches of one grain each: a large grain (a 65-gonal prism) in the first batch sends the
+    helper to the general classification; a grain whose lists the fast path surely leaves (a
+    2-gon, a cube with 6n - 11 entries) makes the run compile the general validation first."""
     import grainclass.warmup as warmup
     from grainclass.batch import GrainBatch
 
     heard: list[bytes] = []
+    validated_first: list[bool] = []
 
     class Pipe(io.BytesIO):
         def close(self) -> None:
@@ -110,11 +148,13 @@ def test_the_first_batch_tells_the_helper_whether_the_general_classification_com
 
     monkeypatch.setattr(warmup, "cold", lambda kernel: True)
     monkeypatch.setattr(warmup.subprocess, "Popen", Helper)
-    batches = [GrainBatch.from_lists([warmup.CUBE if n == 6 else warmup.PRISM]) for n in sizes]
-    assert [len(b.n_faces) and int(b.n_faces[0]) for b in batches] == sizes
+    monkeypatch.setattr(warmup, "_validation_first", lambda: validated_first.append(True))
+    lists = {"cube": warmup.CUBE, "prism": warmup.PRISM, "two-gon": TWO_GON, "extra": EXTRA}
+    batches = [GrainBatch.from_lists([lists[name]]) for name in grains]
     with warmup.compiling_from_both_ends(jobs=2, types=True) as watch:
         assert list(watch(batches)) == batches
     assert heard == [told]
+    assert validated_first == ([True] if told == warmup.VALIDATION else [])
 
 
 def test_a_kernel_never_compiled_is_cold_and_a_cached_one_is_not(tmp_path):

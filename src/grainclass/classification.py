@@ -166,7 +166,7 @@ class _Classified:
 def _classify_csr(batch: GrainBatch, max_small: int, strings: bool) -> _Classified:
     """The fast path over the batch, then the general validation over the grains it left,
     then the general classification over the ok ones of more than ``max_small`` faces."""
-    from grainclass._kernels.batch import _classify_batch, _validate_pending_batch
+    from grainclass._kernels.batch import _classify_batch
 
     out = _Classified.empty(batch, strings)
     csr = (batch.face_offsets, batch.nbr_offsets, batch.neighbors)
@@ -187,23 +187,41 @@ def _classify_csr(batch: GrainBatch, max_small: int, strings: bool) -> _Classifi
     )
     pending = np.flatnonzero(out.status == codes.PENDING)
     if len(pending):
-        run_ranges(
-            _validate_pending_batch,
-            len(pending),
-            pending,
-            *csr,
-            max_small,
-            strings,
-            out.status,
-            out.consistent,
-            out.err,
-            *rows,
-            *strings_out,
-        )
+        _validate_pending(batch, out, pending, max_small, strings)
         pending = pending[out.status[pending] == codes.PENDING]
     if len(pending):
         _classify_general(batch, out, pending, strings)
     return out
+
+
+def _validate_pending(
+    batch: GrainBatch, out: _Classified, pending: np.ndarray, max_small: int, strings: bool
+) -> None:
+    """The general validation of the grains ``pending`` (int64 indices) that the fast path
+    left, into ``out``; those of at most ``max_small`` faces found ok are classified too."""
+    from grainclass._kernels.batch import _validate_pending_batch
+
+    run_ranges(
+        _validate_pending_batch,
+        len(pending),
+        pending,
+        batch.face_offsets,
+        batch.nbr_offsets,
+        batch.neighbors,
+        max_small,
+        strings,
+        out.status,
+        out.consistent,
+        out.err,
+        out.family,
+        out.fundamental,
+        out.n_trees,
+        out.depth,
+        out.belts,
+        out.tree_offsets,
+        out.tree_bytes,
+        out.tree_length,
+    )
 
 
 def _classify_general(

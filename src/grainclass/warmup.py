@@ -2,12 +2,19 @@
 
 numba compiles one kernel at a time in a process, so the first ``classify`` after installation
 (or after an upgrade of numba) spends most of its time compiling, on one core. When the cache
-is cold and more than one job may run, a helper process classifies a cube with the kernels
-called in the opposite order (the Weinberg walk first, the classification last) while the main
-process starts with the classification: each loads from numba's cache what the other has
-already written there, and the two meet in the middle. A first batch with a grain of more than
-64 faces needs the general classification too, which the main process reaches after the general
-validation: the helper is told so, and compiles it right after the Weinberg walk.
+is cold and more than one job may run, a helper process compiles the kernels in the opposite
+order (the Weinberg walk first, the classification last) while the main process starts with the
+classification: each loads from numba's cache what the other has already written there, and the
+two meet in the middle.
+
+A grain that the fast path leaves needs the general validation, and one of more than 64 faces
+the general classification too: some 4 s of compiling each, after the fast path's 3. The run
+tells the helper at its first batch which of them it will need (``_plan``), and the work is
+shared anew: with a large grain the helper compiles the general classification after the walk;
+with grains the fast path surely leaves (their lists do not hold the 6n - 12 entries of a simple
+grain's, or one has fewer than three), the run compiles the general validation before its first
+batch while the helper compiles the fast path. Whatever the plan, each kernel is compiled where
+it is called if it is not in the cache yet: the plan only saves time.
 """
 
 from __future__ import annotations
@@ -26,7 +33,9 @@ CUBE = [[1, 2, 3, 4], [0, 4, 5, 2], [0, 1, 5, 3], [0, 2, 5, 4], [0, 3, 5, 1], [1
 _K = 65  # the 65-gonal prism, 67 faces: too large for the fast path
 PRISM = [[_K, (i - 1) % _K, _K + 1, (i + 1) % _K] for i in range(_K)]
 PRISM += [list(range(_K)), list(reversed(range(_K)))]
-_GENERAL = b"general\n"  # what the helper reads when the general classification comes first
+# What the run tells the helper, one line, at its first batch (nothing: only the fast path).
+GENERAL = b"general\n"  # a grain of more than 64 faces: the general classification too
+VALIDATION = b"validation\n"  # grains the fast path leaves: the run compiles their validation
 _STOP_WAIT = 2.0  # seconds the helper may take to finish once the main process is done
 
 
@@ -48,11 +57,10 @@ def compiling_from_both_ends(
     is in the cache) and gets a moment to finish; if the body fails it is stopped at once.
 
     Yields ``watch``, which passes the run's batches through and, at the first, tells the helper
-    whether the run needs the general classification (the helper asks once it has compiled the
-    Weinberg walk, and waits for the answer).
+    the plan (which it reads once it has compiled the Weinberg walk, waiting for it if need be)
+    and compiles the general validation first if the plan says so.
     """
     from grainclass._kernels.batch import _classify_batch
-    from grainclass._kernels.bits import MAX_BITSET_FACES
     from grainclass._kernels.weinberg import _weinberg_batch
 
     helper = None
@@ -67,19 +75,22 @@ def compiling_from_both_ends(
                 stderr=subprocess.DEVNULL,
             )
 
-    def tell(general: bool) -> None:
+    def tell(plan: bytes) -> None:
         # The helper may be gone already (killed, or failed): it only ever saves time.
         with contextlib.suppress(OSError, ValueError):
-            if general:
-                helper.stdin.write(_GENERAL)  # type: ignore[union-attr]
+            helper.stdin.write(plan)  # type: ignore[union-attr]
+        with contextlib.suppress(OSError, ValueError):
             helper.stdin.close()  # type: ignore[union-attr]
 
     def watch(batches: Iterable[GrainBatch]) -> Iterator[GrainBatch]:
         told = False
         for batch in batches:
             if not told and helper is not None:
-                tell(len(batch) > 0 and int(batch.n_faces.max()) > MAX_BITSET_FACES)
+                plan = _plan(batch)
+                tell(plan)
                 told = True
+                if plan == VALIDATION:
+                    _validation_first()
             yield batch
 
     try:
@@ -87,11 +98,11 @@ def compiling_from_both_ends(
     except BaseException:
         if helper is not None:
             helper.kill()
-            tell(False)
+            tell(b"")
             helper.wait()
         raise
     if helper is not None:
-        tell(False)  # no batch came: the usual order
+        tell(b"")  # no batch came
         try:
             helper.wait(timeout=_STOP_WAIT)
         except subprocess.TimeoutExpired:
@@ -99,35 +110,73 @@ def compiling_from_both_ends(
             helper.wait()
 
 
-def fill_cache(types: bool, general: Callable[[], bool]) -> None:
-    """The helper's work: the kernels ``classify`` calls last (the general classification
-    among them if ``general()`` says so once the Weinberg walk is compiled), then ``classify``
+def _plan(batch: GrainBatch) -> bytes:
+    """What a run whose first batch is ``batch`` will compile beyond the fast path."""
+    import numpy as np
+
+    from grainclass._kernels.bits import MAX_BITSET_FACES
+
+    if not len(batch):
+        return b""
+    n_faces = batch.n_faces
+    if int(n_faces.max()) > MAX_BITSET_FACES:
+        return GENERAL
+    parsed = np.ones(len(batch), np.bool_)
+    parsed[list(batch.parse_errors)] = False  # the fast path marks these itself
+    entries = np.diff(batch.nbr_offsets[batch.face_offsets])
+    short_list = np.diff(batch.nbr_offsets) < 3  # a 2-gon, say
+    left = np.any(parsed & (entries != 6 * n_faces - 12)) or np.any(
+        np.repeat(parsed, n_faces) & short_list
+    )
+    return VALIDATION if left else b""
+
+
+def _validation_first() -> None:
+    """The general validation, on a cube the fast path left: the call ``classify`` makes."""
+    import numpy as np
+
+    from grainclass._kernels.bits import MAX_BITSET_FACES
+    from grainclass.batch import GrainBatch
+    from grainclass.classification import _Classified, _validate_pending
+
+    batch = GrainBatch.from_lists([CUBE])
+    out = _Classified.empty(batch, strings=True)
+    _validate_pending(batch, out, np.zeros(1, np.int64), MAX_BITSET_FACES, strings=True)
+
+
+def fill_cache(types: bool, plan: Callable[[], bytes]) -> None:
+    """The helper's work: the kernels ``classify`` calls last, with what ``plan()`` asks for
+    once the Weinberg walk is compiled (see :func:`_last_kernels_first`), then ``classify``
     itself on a cube (which by then finds its kernels in the cache)."""
     from grainclass.batch import GrainBatch
     from grainclass.classification import classify
 
     batch = GrainBatch.from_lists([CUBE])
-    _last_kernels_first(batch, types, general)
+    _last_kernels_first(batch, types, plan)
     classify(batch, types=types)
 
 
 def _last_kernels_first(
-    batch: GrainBatch, types: bool, general: Callable[[], bool] = lambda: False
+    batch: GrainBatch, types: bool, plan: Callable[[], bytes] = lambda: b""
 ) -> None:
-    """The Weinberg walk, the general classification if ``general()``, and the table's column
-    kernels, on made-up outputs of the classification (every grain ok): the calls and argument
-    types of ``classify`` itself. The main process, which starts with the fast path and the
-    general validation, needs the general classification before the table's columns."""
+    """The Weinberg walk, then what ``plan()`` asks for, then the table's column kernels, on
+    made-up outputs of the classification (every grain ok): the calls and argument types of
+    ``classify`` itself. The main process needs the general classification (GENERAL) only
+    after the fast path and the general validation; when it compiles that validation first
+    (VALIDATION), it needs the fast path next, which the helper then compiles."""
     from grainclass._kernels import codes
     from grainclass.batch import GrainBatch
-    from grainclass.classification import _Classified, _table, _types
+    from grainclass.classification import _Classified, _table, _types, classify
 
     out = _Classified.empty(batch, strings=True)
     out.status[:] = codes.OK
     out.consistent[:] = True
     walked = _types(batch, out, types)
-    if general():
+    told = plan()
+    if told == GENERAL:
         _general_first(GrainBatch.from_lists([PRISM]))
+    elif told == VALIDATION:
+        classify(GrainBatch.from_lists([CUBE]), types=types)
     _table(batch, out, walked)
 
 
@@ -145,9 +194,4 @@ def _general_first(batch: GrainBatch) -> None:
 
 
 if __name__ == "__main__":
-    # The run says, at its first batch, whether it needs the general classification; a run that
-    # ends without a batch closes the pipe.
-    fill_cache(
-        types="--no-types" not in sys.argv[1:],
-        general=lambda: sys.stdin.buffer.readline() == _GENERAL,
-    )
+    fill_cache(types="--no-types" not in sys.argv[1:], plan=sys.stdin.buffer.readline)
