@@ -3,6 +3,7 @@ losing order, results, errors or threads."""
 
 from __future__ import annotations
 
+import os
 import threading
 
 import pytest
@@ -134,3 +135,47 @@ def test_a_broken_worker_pool_may_be_shut_down_from_two_threads_at_once():
         for thread in both:
             thread.join()
     assert errors == []
+
+
+@pytest.fixture
+def no_interpreter(monkeypatch, tmp_path):
+    """Worker processes that end as they start: their interpreter may not be run. The resource
+    tracker, which every pool needs, is started first, from the real one."""
+    import multiprocessing.spawn
+    from multiprocessing import resource_tracker
+
+    resource_tracker.ensure_running()
+    forbidden = tmp_path / "python"
+    forbidden.write_text("#!/bin/sh\n")
+    forbidden.chmod(0o600)
+    monkeypatch.setattr(multiprocessing.spawn, "_python_exe", os.fsencode(forbidden))
+
+
+def test_a_pool_whose_workers_cannot_start_works_in_this_process(no_interpreter):
+    """It was a traceback (a broken pool) at the first task."""
+    from grainclass.errors import NoWorkersWarning
+    from grainclass.parallel import worker_pool
+
+    with pytest.warns(NoWorkersWarning, match=r"could not start \(one ended as it started\)"):
+        pool = worker_pool(2)
+    assert list(pool.map(abs, [-1, -2, 3], chunksize=2)) == [1, 2, 3]
+    with pytest.raises(ValueError, match="invalid literal"):
+        pool.submit(int, "x").result()  # a task's error, raised where its result would be
+    pool.shutdown()
+
+
+def test_a_pool_without_semaphores_works_in_this_process(monkeypatch):
+    """Where /dev/shm is missing, the pool's queues cannot be made: that was reported as an
+    error of the output file."""
+    import errno
+
+    import grainclass.parallel as parallel
+    from grainclass.errors import NoWorkersWarning
+
+    def no_semaphores(*args, **kwargs):
+        raise OSError(errno.ENOSYS, "Function not implemented")
+
+    monkeypatch.setattr(parallel, "_WorkerPool", no_semaphores)
+    with pytest.warns(NoWorkersWarning, match=r"could not start \(Function not implemented\)"):
+        pool = parallel.worker_pool(2)
+    assert pool.submit(divmod, 7, 2).result() == (3, 1)

@@ -19,10 +19,13 @@ import itertools
 import os
 import signal
 import threading
+import warnings
 import weakref
 from collections.abc import Callable, Iterable, Iterator
-from concurrent.futures import Future, ProcessPoolExecutor, ThreadPoolExecutor
+from concurrent.futures import Executor, Future, ProcessPoolExecutor, ThreadPoolExecutor
 from typing import TypeVar
+
+from grainclass.errors import NoWorkersWarning
 
 T = TypeVar("T")
 R = TypeVar("R")
@@ -157,10 +160,16 @@ class _WorkerPool(ProcessPoolExecutor):
     def __init__(self, *args, **kwargs) -> None:
         super().__init__(*args, **kwargs)
         self._shutting_down = threading.Lock()
+        self._in_process: Executor | None = None
 
     def submit(self, fn, /, *args, **kwargs):  # type: ignore[override]
-        with interrupts_blocked():
-            return super().submit(fn, *args, **kwargs)
+        if self._in_process is None:
+            try:
+                with interrupts_blocked():
+                    return super().submit(fn, *args, **kwargs)
+            except OSError as exc:  # no worker could start: this one and the rest run here
+                self._in_process = _in_process(exc)
+        return self._in_process.submit(fn, *args, **kwargs)
 
     def shutdown(self, wait: bool = True, *, cancel_futures: bool = False) -> None:
         with self._shutting_down:
@@ -175,13 +184,51 @@ def worker_pool(workers: int) -> ProcessPoolExecutor:
     threads) that end at once and quietly on Ctrl-C, where ignoring it kept their parent
     waiting for their tasks; an interrupted command stops the pools with
     :func:`stop_worker_pools`."""
+    from concurrent.futures.process import BrokenProcessPool
     from multiprocessing import get_context
 
-    pool = _WorkerPool(
-        workers, mp_context=get_context("spawn"), initializer=end_quietly_on_interrupt
-    )
+    try:
+        pool = _WorkerPool(
+            workers, mp_context=get_context("spawn"), initializer=end_quietly_on_interrupt
+        )
+    except OSError as exc:  # its queues' semaphores, say, where /dev/shm is missing
+        return _in_process(exc)
     _worker_pools.add(pool)
+    try:
+        # A worker that cannot start (an interpreter that may not be run, or is gone) dies
+        # unseen, and the pool breaks at whatever task comes first: find out before there are
+        # tasks to lose.
+        pool.submit(os.getpid).result()
+    except (OSError, BrokenProcessPool) as exc:
+        pool.shutdown(wait=True, cancel_futures=True)
+        return _in_process(exc)
     return pool
+
+
+class _InProcess(Executor):
+    """A pool of worker processes that runs each task in this process as it is submitted."""
+
+    def submit(self, fn, /, *args, **kwargs):  # type: ignore[override]
+        future: Future = Future()
+        try:
+            future.set_result(fn(*args, **kwargs))
+        except Exception as exc:  # raised by result(), as from a worker
+            future.set_exception(exc)
+        return future
+
+
+def _in_process(failure: Exception) -> Executor:
+    """Where worker processes cannot start, the work is done here, more slowly, and the run
+    says so: it failed with a traceback (a broken pool), as an error of the output file, or
+    silently, as if its output pipe had closed (the resource tracker's Broken pipe)."""
+    why = failure.strerror if isinstance(failure, OSError) else None
+    warnings.warn(
+        f"worker processes could not start ({why or 'one ended as it started'}): "
+        "working in this process instead",
+        NoWorkersWarning,
+        stacklevel=3,
+    )
+    return _InProcess()
 
 
 def stop_worker_pools() -> None:
