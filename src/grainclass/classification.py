@@ -137,6 +137,16 @@ class _Classified:
     tree_bytes: np.ndarray
     tree_length: np.ndarray
 
+    @property
+    def rows(self) -> tuple[np.ndarray, ...]:
+        """The per-grain classification, as the batch kernels take it."""
+        return (self.family, self.fundamental, self.n_trees, self.depth, self.belts)
+
+    @property
+    def forests(self) -> tuple[np.ndarray, ...]:
+        """The truncation-forest strings, as the batch kernels take them."""
+        return (self.tree_offsets, self.tree_bytes, self.tree_length)
+
     @classmethod
     def empty(cls, batch: GrainBatch, strings: bool) -> _Classified:
         """Output arrays for the kernels, sized for ``batch`` (3n bytes of tree string per
@@ -169,21 +179,18 @@ def _classify_csr(batch: GrainBatch, max_small: int, strings: bool) -> _Classifi
     from grainclass._kernels.batch import _classify_batch
 
     out = _Classified.empty(batch, strings)
-    csr = (batch.face_offsets, batch.nbr_offsets, batch.neighbors)
-    strings_out = (out.tree_offsets, out.tree_bytes, out.tree_length)
-    rows = (out.family, out.fundamental, out.n_trees, out.depth, out.belts)
     run_ranges(
         _classify_batch,
         len(batch),
-        *csr,
+        *_csr(batch),
         out.parsed,
         max_small,
         strings,
         out.status,
         out.consistent,
         out.err,
-        *rows,
-        *strings_out,
+        *out.rows,
+        *out.forests,
     )
     pending = np.flatnonzero(out.status == codes.PENDING)
     if len(pending):
@@ -192,6 +199,10 @@ def _classify_csr(batch: GrainBatch, max_small: int, strings: bool) -> _Classifi
     if len(pending):
         _classify_general(batch, out, pending, strings)
     return out
+
+
+def _csr(batch: GrainBatch) -> tuple[np.ndarray, ...]:
+    return (batch.face_offsets, batch.nbr_offsets, batch.neighbors)
 
 
 def _validate_pending(
@@ -205,22 +216,14 @@ def _validate_pending(
         _validate_pending_batch,
         len(pending),
         pending,
-        batch.face_offsets,
-        batch.nbr_offsets,
-        batch.neighbors,
+        *_csr(batch),
         max_small,
         strings,
         out.status,
         out.consistent,
         out.err,
-        out.family,
-        out.fundamental,
-        out.n_trees,
-        out.depth,
-        out.belts,
-        out.tree_offsets,
-        out.tree_bytes,
-        out.tree_length,
+        *out.rows,
+        *out.forests,
     )
 
 
@@ -235,19 +238,11 @@ def _classify_general(
         _classify_general_batch,
         len(pending),
         pending,
-        batch.face_offsets,
-        batch.nbr_offsets,
-        batch.neighbors,
+        *_csr(batch),
         strings,
         out.status,
-        out.family,
-        out.fundamental,
-        out.n_trees,
-        out.depth,
-        out.belts,
-        out.tree_offsets,
-        out.tree_bytes,
-        out.tree_length,
+        *out.rows,
+        *out.forests,
     )
 
 
