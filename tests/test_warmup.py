@@ -13,7 +13,7 @@ import pytest
 
 from grainclass.warmup import cold
 
-pytestmark = pytest.mark.skipif(
+needs_jit = pytest.mark.skipif(
     os.environ.get("NUMBA_DISABLE_JIT") == "1", reason="nothing is compiled without the JIT"
 )
 
@@ -39,6 +39,7 @@ _last_kernels_first(GrainBatch.from_lists([CUBE]), types=True)
 """
 
 
+@needs_jit
 def test_helper_compiles_the_kernels_classify_calls_last_with_its_signatures(tmp_path):
     env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path / "cache"))
     text = tmp_path / "grains.txt"
@@ -77,6 +78,7 @@ def _prism(k: int) -> str:
     return f"prism{k}\t" + ";".join(" ".join(map(str, face)) for face in faces) + "\n"
 
 
+@needs_jit
 def test_helper_told_of_a_large_grain_compiles_the_general_classification_with_its_signature(
     tmp_path,
 ):
@@ -92,6 +94,7 @@ def test_helper_told_of_a_large_grain_compiles_the_general_classification_with_i
     assert "_validate_pending_batch" in compiled  # left to the run, which needs it first
 
 
+@needs_jit
 def test_the_validation_first_plan_compiles_what_a_run_with_bad_grains_calls(tmp_path):
     """The run's general validation and the helper's fast path, with their signatures: a run on
     a degenerate grain (a 2-gon) and a cube then compiles none of the batch kernels."""
@@ -157,6 +160,7 @@ def test_the_first_batch_tells_the_helper_the_plan(monkeypatch, grains, told):
     assert validated_first == ([True] if told == warmup.VALIDATION else [])
 
 
+@needs_jit
 def test_a_kernel_never_compiled_is_cold_and_a_cached_one_is_not(tmp_path):
     probe = (
         "import sys; from grainclass.warmup import cold; "
