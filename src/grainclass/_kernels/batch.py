@@ -45,7 +45,7 @@ def _work():
         np.zeros(MAX_BITSET_FACES * MAX_BITSET_FACES, np.uint16),  # corners (small.next_stamp)
         np.empty(MAX_BITSET_FACES, np.uint64),  # link of each removed face
         np.empty(MAX_BITSET_FACES, np.int32),  # round it was removed in
-        _forest_scratch(MAX_BITSET_FACES),
+        _forest_scratch(np.int64(MAX_BITSET_FACES)),  # not a literal: compiled once, for int64
     )
 
 

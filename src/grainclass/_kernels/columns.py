@@ -218,7 +218,7 @@ def _code_hashes(codes, code_offsets, ok):
                 tens = v // 10
                 h = _fnv_byte(_fnv_byte(h, 48 + tens), 48 + v - 10 * tens)
             else:
-                end = _write_digits(digits, 0, v)
+                end = _write_digits(digits, np.int64(0), v)  # int64, as its other callers
                 for k in range(end):
                     h = _fnv_byte(h, digits[k])
         out[g] = _fnv_byte(h, 41)  # ")"

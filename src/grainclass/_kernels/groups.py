@@ -34,7 +34,10 @@ def doubled(table, values):
         if table[s] != EMPTY:
             t = slot(bigger, table[s])
             bigger[t] = table[s]
-            moved[t] = values[s]
+            # Element by element: a row assignment (moved[t] = values[s]) compiled numba's
+            # broadcasting, with its shape-mismatch error, 1.4 s of a first run.
+            for c in range(values.shape[1]):
+                moved[t, c] = values[s, c]
     return bigger, moved
 
 

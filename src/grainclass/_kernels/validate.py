@@ -72,7 +72,10 @@ def _check_lists(n, off, nb, err):
                 return INVALID
     for v in range(n):
         for i in range(off[v], off[v + 1]):
-            x = nb[i]
+            # int64 like v, as everywhere _count is called: each mix of scalar types would be
+            # compiled again (here and in the other kernels of the general path, ~0.1-0.5 s
+            # each at a first run).
+            x = np.int64(nb[i])
             if _count(off, nb, v, x) != _count(off, nb, x, v):
                 err[0], err[1], err[2] = E_ASYMMETRIC, v, x
                 return INVALID
@@ -88,7 +91,7 @@ def _check_lists(n, off, nb, err):
             return DEGENERATE
     for v in range(n):
         for i in range(off[v], off[v + 1]):
-            c = _count(off, nb, v, nb[i])
+            c = _count(off, nb, v, np.int64(nb[i]))
             if c > 1:
                 err[0], err[1], err[2] = E_SHARED_EDGES, v, nb[i]
                 return DEGENERATE
@@ -240,11 +243,11 @@ def _embed_triangulation(n, off, nb, adj, err, third):
     skip = np.zeros(n, np.bool_)
     for u in range(n):
         for i in range(off[u], off[u + 1]):
-            v = nb[i]
+            v = np.int64(nb[i])  # int64 like u: one compiled _add_facial, not three
             if v <= u:
                 continue
             for j in range(off[v], off[v + 1]):
-                w = nb[j]
+                w = np.int64(nb[j])
                 if w <= v or not adj[u, w]:
                     continue
                 skip[u] = skip[v] = skip[w] = True
@@ -287,7 +290,7 @@ def _rotation(n, off, nb, rot):
             adj[v, nb[i]] = 1
     sign = np.zeros(n, np.int64)
     longest = np.empty(2, np.int64)
-    source = nb.astype(np.int64)
+    source = nb.copy()  # of nb's type: one compiled _orient and _trace_faces for both
     if not (
         _orient(n, off, nb, adj, sign) and _trace_faces(n, off, nb, sign, longest) == 2 * n - 4
     ):

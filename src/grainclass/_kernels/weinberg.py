@@ -195,7 +195,8 @@ def _weinberg_batch(
     faces = np.empty(max(max_faces, 1), np.int64)
     code = np.empty(max(6 * max_faces - 11, 1), np.int32)
     walks = np.empty((max(12 * max_faces - 24, 1), 3), np.int64)
-    gen = 0
+    # Not the literal 0: numba compiled _weinberg once for a literal 0 and once for int64.
+    gen = np.int64(0)
     for g in range(first, last):
         if not ok[g]:
             continue
@@ -210,7 +211,7 @@ def _weinberg_batch(
                 before = rotations[at(i)]
         if gen > _MAX_STAMP:  # a grain makes at most 12n walks: far from overflowing
             seen[:] = 0
-            gen = 0
+            gen = np.int64(0)
         best = codes[code_offsets[g] : code_offsets[g] + 6 * n - 11]
         symmetry[g], chirality[g], gen = _weinberg(
             n, rotations, off, sigma, faces, best, gen, seen, code, walks
