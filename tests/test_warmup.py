@@ -109,6 +109,47 @@ def test_the_validation_first_plan_compiles_what_a_run_with_bad_grains_calls(tmp
     assert not {"_classify_batch", "_validate_pending_batch", *FIRST} & set(compiled), compiled
 
 
+# summarize's counting, recorded as RECORD records classify.
+RECORD_COUNTING = RECORD.replace(
+    "from grainclass.classification import classify", "from grainclass.summary import tally_batch"
+).replace("classify(batch)", "tally_batch(batch)")
+COUNTING_HELPER = """
+import sys
+from numba.core import event
+recorder = event.RecordingListener()
+event.register("numba:compile", recorder)
+from grainclass.warmup import fill_cache
+fill_cache(types=False, plan=lambda: sys.argv[1].encode(), counting=True)
+print(sum(e.is_start for _, e in recorder.buffer))
+"""
+
+
+@needs_jit
+def test_counting_plans_compile_what_summarize_calls(tmp_path):
+    """summarize counts grains and writes no table: with bad grains, the run's general
+    validation and the helper's fast path and counting kernels leave it nothing to compile;
+    told nothing, the helper compiles nothing (the run starts with the fast path)."""
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path / "cache"))
+    text = tmp_path / "grains.txt"
+    text.write_text("theta\t1 2;0 2;0 1\ncube\t1 2 3 4;0 4 5 2;0 1 5 3;0 2 5 4;0 3 5 1;1 4 3 2\n")
+    idle = subprocess.run(
+        [sys.executable, "-c", COUNTING_HELPER, ""], env=env, check=True, capture_output=True
+    )
+    assert idle.stdout.split() == [b"0"]
+    subprocess.run([sys.executable, "-c", COUNTING_HELPER, "validation\n"], env=env, check=True)
+    subprocess.run(
+        [sys.executable, "-c", "from grainclass.warmup import _validation_first as v; v()"],
+        env=env,
+        check=True,
+    )
+    done = subprocess.run(
+        [sys.executable, "-c", RECORD_COUNTING, str(text)], env=env, check=True, capture_output=True
+    )
+    compiled = json.loads(done.stdout)
+    counting = {"_classify_batch", "_validate_pending_batch", "_group_keys", "_triangle_counts"}
+    assert not counting & set(compiled), compiled
+
+
 TWO_GON = [[1, 2], [0, 2, 3], [0, 3, 1], [1, 2]]  # face 0 has two neighbours
 EXTRA = [[1, 2, 3, 4, 5], [0, 4, 5, 2], [0, 1, 5, 3], [0, 2, 5, 4], [0, 3, 5, 1], [1, 4, 3, 2]]
 

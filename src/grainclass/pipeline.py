@@ -11,7 +11,6 @@ import sys
 import threading
 import time
 from collections.abc import Iterable, Iterator, Sequence
-from contextlib import nullcontext
 from typing import TYPE_CHECKING, TypeVar
 
 import pyarrow as pa
@@ -159,7 +158,7 @@ def tallies(
             continue
         # The Weinberg walks need the CSR lists; counting alone reads planar_code as bytes.
         batches = read_dataset([path], format, chunk_size, triple_edges, raw_planar_code=not types)
-        with compiling_from_both_ends(get_jobs(), types) if types else nullcontext(iter) as watch:
+        with compiling_from_both_ends(get_jobs(), types, counting=not types) as watch:
             yield from map_ordered(
                 lambda batch: tally_batch(batch, include_boundary, types), prefetch(watch(batches))
             )

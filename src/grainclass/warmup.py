@@ -50,11 +50,13 @@ def cold(kernel: object) -> bool:
 
 @contextmanager
 def compiling_from_both_ends(
-    jobs: int, types: bool
+    jobs: int, types: bool, counting: bool = False
 ) -> Iterator[Callable[[Iterable[GrainBatch]], Iterator[GrainBatch]]]:
     """Run the body with a helper compiling from the other end when the cache is cold and
     ``jobs`` > 1. Once the body is done the helper has little left (what it would compile next
     is in the cache) and gets a moment to finish; if the body fails it is stopped at once.
+    ``counting`` (``summarize`` without types): the run counts grains and writes no table, and
+    the helper has work only when the plan needs more than the fast path.
 
     Yields ``watch``, which passes the run's batches through and, at the first, tells the helper
     the plan (which it reads once it has compiled the Weinberg walk, waiting for it if need be)
@@ -69,7 +71,13 @@ def compiling_from_both_ends(
         # time, and the run compiles everything itself.
         with contextlib.suppress(OSError):
             helper = subprocess.Popen(
-                [sys.executable, "-m", "grainclass.warmup", *([] if types else ["--no-types"])],
+                [
+                    sys.executable,
+                    "-m",
+                    "grainclass.warmup",
+                    *([] if types else ["--no-types"]),
+                    *(["--counting"] if counting else []),
+                ],
                 stdin=subprocess.PIPE,
                 stdout=subprocess.DEVNULL,
                 stderr=subprocess.DEVNULL,
@@ -115,9 +123,10 @@ def _plan(batch: GrainBatch) -> bytes:
     import numpy as np
 
     from grainclass._kernels.bits import MAX_BITSET_FACES
+    from grainclass.batch import GrainBatch
 
-    if not len(batch):
-        return b""
+    if not isinstance(batch, GrainBatch) or not len(batch):
+        return b""  # planar_code records that summarize counts as bytes: their own kernel
     n_faces = batch.n_faces
     if int(n_faces.max()) > MAX_BITSET_FACES:
         return GENERAL
@@ -144,14 +153,25 @@ def _validation_first() -> None:
     _validate_pending(batch, out, np.zeros(1, np.int64), MAX_BITSET_FACES, strings=True)
 
 
-def fill_cache(types: bool, plan: Callable[[], bytes]) -> None:
+def fill_cache(types: bool, plan: Callable[[], bytes], counting: bool = False) -> None:
     """The helper's work: the kernels ``classify`` calls last, with what ``plan()`` asks for
     once the Weinberg walk is compiled (see :func:`_last_kernels_first`), then ``classify``
-    itself on a cube (which by then finds its kernels in the cache)."""
+    itself on a cube (which by then finds its kernels in the cache). When ``counting``, what
+    the plan asks for, then the counting of a cube (the fast path first, as the run needs it
+    after the general validation), or nothing if the plan asks for nothing: the run starts with
+    the fast path itself."""
     from grainclass.batch import GrainBatch
     from grainclass.classification import classify
+    from grainclass.summary import tally_batch
 
     batch = GrainBatch.from_lists([CUBE])
+    if counting:
+        told = plan()
+        if told == GENERAL:
+            _general_first(GrainBatch.from_lists([PRISM]))
+        if told:
+            tally_batch(batch)
+        return
     _last_kernels_first(batch, types, plan)
     classify(batch, types=types)
 
@@ -194,4 +214,8 @@ def _general_first(batch: GrainBatch) -> None:
 
 
 if __name__ == "__main__":
-    fill_cache(types="--no-types" not in sys.argv[1:], plan=sys.stdin.buffer.readline)
+    fill_cache(
+        types="--no-types" not in sys.argv[1:],
+        plan=sys.stdin.buffer.readline,
+        counting="--counting" in sys.argv[1:],
+    )
