@@ -63,7 +63,7 @@ def _scan(buf, big_endian, max_records, starts):
     The scan stops before a header (:func:`header_length`): the caller reads it.
     """
     size = buf.shape[0]
-    p = 0
+    p = np.int64(0)  # not the literal 0, for which numba compiled header_length a second time
     records = vertices = entries = 0
     starts[0] = 0
     while p < size and records < max_records:
