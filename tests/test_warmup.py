@@ -8,6 +8,7 @@ import json
 import os
 import subprocess
 import sys
+from pathlib import Path
 
 import pytest
 
@@ -148,6 +149,59 @@ def test_counting_plans_compile_what_summarize_calls(tmp_path):
     compiled = json.loads(done.stdout)
     counting = {"_classify_batch", "_validate_pending_batch", "_group_keys", "_triangle_counts"}
     assert not counting & set(compiled), compiled
+
+
+# Every input kind and path of classify and summarize, in a fresh process: the kernels of
+# grainclass._kernels called with more than one set of argument types (each set is compiled
+# on its own at a first run).
+SIGNATURES = """
+import importlib, json, pkgutil, sys
+import numba
+import grainclass._kernels as kernels
+from grainclass.classification import classify
+from grainclass.pipeline import tallies
+from grainclass.readers import read_dataset
+for path in sys.argv[1:]:
+    for batch in read_dataset([path]):
+        classify(batch)
+    for types in (False, True):
+        for _ in tallies([path], types=types):
+            pass
+several = {}
+for module in pkgutil.iter_modules(kernels.__path__):
+    found = importlib.import_module(f"grainclass._kernels.{module.name}")
+    for name, value in vars(found).items():
+        if isinstance(value, numba.core.registry.CPUDispatcher) and len(value.signatures) > 1:
+            several[name] = [str(s) for s in value.signatures]
+print(json.dumps(several))
+"""
+# A few lines each, called with bytes, int32 indices and int64 counts alike: a few hundredths
+# of a second to compile again.
+SMALL_HELPERS = {"bit", "_digits", "_write_digits"}
+
+
+@needs_jit
+def test_every_kernel_is_called_with_one_set_of_argument_types(tmp_path, plantri_output):
+    """A literal 0 or 64 where an int64 is passed elsewhere, or int32 indices where int64 are,
+    compiled a kernel again: 1-1.5 s of a first run, over the general path's kernels."""
+    from conftest import EXAMPLES
+
+    prism = tmp_path / "prism.txt"
+    prism.write_text(_prism(66))
+    inputs = [
+        EXAMPLES / "bad-grains.txt",
+        EXAMPLES / "polytopes.txt",
+        prism,
+        plantri_output(9),
+        Path(__file__).resolve().parents[2] / "shared" / "fixtures" / "grain3d",  # Evolver
+    ]
+    done = subprocess.run(
+        [sys.executable, "-c", SIGNATURES, *map(str, inputs)],
+        check=True,
+        capture_output=True,
+    )
+    several = json.loads(done.stdout)
+    assert set(several) <= SMALL_HELPERS, several
 
 
 TWO_GON = [[1, 2], [0, 2, 3], [0, 3, 1], [1, 2]]  # face 0 has two neighbours
