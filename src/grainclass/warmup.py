@@ -1,7 +1,8 @@
 """A cold kernel cache is filled from both ends at once.
 
-numba compiles one kernel at a time in a process, so the first ``classify`` after installation
-(or after an upgrade of numba) spends most of its time compiling, on one core. When the cache
+numba compiles one kernel at a time in a process, so the first ``classify`` or ``summarize``
+after installation (or after an upgrade of numba) spends most of its time compiling, on one
+core. When the cache
 is cold and more than one job may run, a helper process compiles the kernels in the opposite
 order (the Weinberg walk first, the classification last) while the main process starts with the
 classification: each loads from numba's cache what the other has already written there, and the
