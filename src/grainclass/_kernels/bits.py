@@ -51,7 +51,7 @@ def _lowest_jit(x):
     return lambda x: trailing_zeros(x)
 
 
-@njit
+@njit(inline="always")  # called with int32, int64 and uint64: inlined, compiled for none
 def bit(i):
     """The bitset holding only ``i``."""
     return ONE << np.uint64(i)
