@@ -179,11 +179,12 @@ class _WorkerPool(ProcessPoolExecutor):
 _worker_pools: weakref.WeakSet[ProcessPoolExecutor] = weakref.WeakSet()
 
 
-def worker_pool(workers: int) -> ProcessPoolExecutor:
+def worker_pool(workers: int) -> Executor:
     """Spawned worker processes (not forked: the parent may be running compiled kernels in
     threads) that end at once and quietly on Ctrl-C, where ignoring it kept their parent
     waiting for their tasks; an interrupted command stops the pools with
-    :func:`stop_worker_pools`."""
+    :func:`stop_worker_pools`. Where no worker can start, an executor that runs each task in
+    this process as it is submitted, with a :class:`NoWorkersWarning`."""
     from concurrent.futures.process import BrokenProcessPool
     from multiprocessing import get_context
 
