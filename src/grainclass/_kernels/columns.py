@@ -2,7 +2,7 @@
 
 import numpy as np
 
-from grainclass._numba import at, njit, njit_leaf
+from grainclass._numba import at, njit
 
 
 @njit
@@ -77,7 +77,9 @@ def _strings_from_codes(codes, names, name_offsets):
     return offsets, data
 
 
-@njit
+# Called with int32 and int64 positions and values: inlined where they are called, so that
+# numba compiles no version of them for each mix of types.
+@njit(inline="always")
 def _digits(v):
     """Decimal digits of a non-negative integer."""
     digits = 1
@@ -87,7 +89,7 @@ def _digits(v):
     return digits
 
 
-@njit_leaf
+@njit(inline="always")
 def _write_digits(data, p, v):
     """Write the non-negative integer v in decimal at ``data[p:]``; returns the end."""
     end = p + _digits(v)
@@ -103,10 +105,10 @@ def _decimal_strings(values):
     n = values.shape[0]
     offsets = np.zeros(n + 1, np.int32)
     for g in range(n):
-        offsets[g + 1] = offsets[g] + _digits(np.int64(values[g]))
+        offsets[g + 1] = offsets[g] + _digits(values[g])
     data = np.empty(offsets[n], np.uint8)
     for g in range(n):
-        _write_digits(data, np.int64(offsets[g]), np.int64(values[g]))
+        _write_digits(data, offsets[g], values[g])
     return offsets, data
 
 
@@ -121,7 +123,7 @@ def _faces_fields(face_offsets, nbr_offsets, neighbors):
         for f in range(face_offsets[g], face_offsets[g + 1]):
             size += max(nbr_offsets[f + 1] - nbr_offsets[f] - 1, 0)  # the spaces
             for i in range(nbr_offsets[f], nbr_offsets[f + 1]):
-                size += _digits(np.int64(neighbors[i]))
+                size += _digits(neighbors[i])
         offsets[g + 1] = offsets[g] + size
     data = np.empty(offsets[n], np.uint8)
     for g in range(n):
@@ -134,7 +136,7 @@ def _faces_fields(face_offsets, nbr_offsets, neighbors):
                 if i > nbr_offsets[f]:
                     data[p] = 32  # " "
                     p += 1
-                p = _write_digits(data, p, np.int64(neighbors[i]))
+                p = _write_digits(data, p, neighbors[i])
     return offsets, data
 
 
@@ -161,7 +163,7 @@ def _code_strings(codes, code_offsets, ok):
             size = 2 * (b - a) + 1 + two  # "(" or "," before each label, ")" after
             if not small[g]:
                 for i in range(a, b):
-                    size += _digits(np.int64(codes[i])) - 1 - (codes[i] >= 10)
+                    size += _digits(codes[i]) - 1 - (codes[i] >= 10)
         offsets[g + 1] = offsets[g] + size
     data = np.empty(offsets[n], np.uint8)
     for g in range(n):
@@ -182,7 +184,7 @@ def _code_strings(codes, code_offsets, ok):
                 data[at(p)] = 44  # ","
         else:
             for i in range(a, b):
-                p = _write_digits(data, p + 1, np.int64(codes[i]))
+                p = _write_digits(data, p + 1, codes[i])
                 data[p] = 44
         data[p] = 41  # ")", over the last ","
     return offsets, data
@@ -218,7 +220,7 @@ def _code_hashes(codes, code_offsets, ok):
                 tens = v // 10
                 h = _fnv_byte(_fnv_byte(h, 48 + tens), 48 + v - 10 * tens)
             else:
-                end = _write_digits(digits, np.int64(0), np.int64(v))
+                end = _write_digits(digits, 0, v)
                 for k in range(end):
                     h = _fnv_byte(h, digits[k])
         out[g] = _fnv_byte(h, 41)  # ")"
