@@ -16,6 +16,7 @@ from grainclass.plantri import find_plantri
 
 ROOT = Path(__file__).resolve().parent.parent
 EXAMPLES = ROOT / "examples"
+EVOLVER_FIXTURES = ROOT.parent / "shared" / "fixtures" / "grain3d"  # Surface Evolver grains
 
 
 @pytest.fixture(scope="session")

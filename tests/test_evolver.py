@@ -10,13 +10,13 @@ import pyarrow as pa
 import pytest
 from click.testing import CliRunner
 
-from conftest import ctrl_c_at_a_terminal
+from conftest import EVOLVER_FIXTURES, ctrl_c_at_a_terminal
 from evolver_expected import FIXTURES, FOAMS
 from grainclass import classify, read_dataset
 from grainclass.cli import cli
 from grainclass.readers import sniff
 
-FIXTURE_DIR = Path(__file__).resolve().parents[2] / "shared" / "fixtures" / "grain3d"
+FIXTURE_DIR = EVOLVER_FIXTURES
 DATA = Path(__file__).resolve().parent / "data" / "evolver"
 
 

@@ -8,7 +8,6 @@ import json
 import os
 import subprocess
 import sys
-from pathlib import Path
 
 import pytest
 
@@ -181,7 +180,7 @@ print(json.dumps(several))
 def test_every_kernel_is_called_with_one_set_of_argument_types(tmp_path, plantri_output):
     """A literal 0 or 64 where an int64 is passed elsewhere, or int32 indices where int64 are,
     compiled a kernel again: 1-1.5 s of a first run, over the general path's kernels."""
-    from conftest import EXAMPLES
+    from conftest import EVOLVER_FIXTURES, EXAMPLES
 
     prism = tmp_path / "prism.txt"
     prism.write_text(_prism(66))
@@ -190,7 +189,7 @@ def test_every_kernel_is_called_with_one_set_of_argument_types(tmp_path, plantri
         EXAMPLES / "polytopes.txt",
         prism,
         plantri_output(9),
-        Path(__file__).resolve().parents[2] / "shared" / "fixtures" / "grain3d",  # Evolver
+        EVOLVER_FIXTURES,
     ]
     done = subprocess.run(
         [sys.executable, "-c", SIGNATURES, *map(str, inputs)],
