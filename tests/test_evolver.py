@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import os
 import shutil
 from pathlib import Path
 
@@ -239,17 +238,10 @@ def test_process_pool_reads_the_same_grains_in_the_same_order(fixture_rows, monk
 
 
 def test_a_folder_is_read_in_this_process_when_no_worker_can_start(
-    fixture_rows, monkeypatch, tmp_path
+    fixture_rows, monkeypatch, no_interpreter
 ):
-    from multiprocessing import resource_tracker
-
     from grainclass.errors import NoWorkersWarning
 
-    resource_tracker.ensure_running()  # from the real interpreter, as a run has it
-    forbidden = tmp_path / "python"
-    forbidden.write_text("#!/bin/sh\n")
-    forbidden.chmod(0o600)
-    monkeypatch.setattr("multiprocessing.spawn._python_exe", os.fsencode(forbidden))
     monkeypatch.setattr("grainclass.readers.evolver.PARALLEL_FILES", 2)
     with pytest.warns(NoWorkersWarning):
         rows = _rows(FIXTURE_DIR)

@@ -89,7 +89,6 @@ def test_map_ordered_keeps_order_and_raises_a_workers_error_in_its_place():
 
 
 def _end_worker():
-    import os
 
     os._exit(130)  # as a worker pool's worker ends on Ctrl-C
 
@@ -135,20 +134,6 @@ def test_a_broken_worker_pool_may_be_shut_down_from_two_threads_at_once():
         for thread in both:
             thread.join()
     assert errors == []
-
-
-@pytest.fixture
-def no_interpreter(monkeypatch, tmp_path):
-    """Worker processes that end as they start: their interpreter may not be run. The resource
-    tracker, which every pool needs, is started first, from the real one."""
-    import multiprocessing.spawn
-    from multiprocessing import resource_tracker
-
-    resource_tracker.ensure_running()
-    forbidden = tmp_path / "python"
-    forbidden.write_text("#!/bin/sh\n")
-    forbidden.chmod(0o600)
-    monkeypatch.setattr(multiprocessing.spawn, "_python_exe", os.fsencode(forbidden))
 
 
 def test_a_pool_whose_workers_cannot_start_works_in_this_process(no_interpreter):
