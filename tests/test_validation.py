@@ -13,10 +13,10 @@ import pytest
 
 from conftest import EXAMPLES
 from grainclass import GrainBatch, classify, read_dataset
-from grainclass._kernels.small import STAMP_STEP, STAMPS
+from grainclass._kernels.small import CORNERS, STAMP_STEP, STAMPS
 from grainclass.errors import InputError
 from grainclass.readers import sniff
-from strategies import planar_code_record
+from strategies import planar_code_record, rotation_lists
 
 CUBE = [[1, 2, 3, 4], [0, 4, 5, 2], [0, 1, 5, 3], [0, 2, 5, 4], [0, 3, 5, 1], [1, 4, 3, 2]]
 
@@ -430,6 +430,18 @@ def _statuses(grains: list[list[list[int]]]) -> tuple[list[str], list[str]]:
     return rows, sorted(counts.index.repeat(counts.to_numpy()))
 
 
+def test_a_sphere_beside_a_torus_is_invalid_though_as_long_as_a_triangulation():
+    # The tetrahedron and K7 on the torus (faces i, i+1, i+3 and i, i+3, i+2 mod 7): 11 faces,
+    # 12 + 42 = 6 * 11 - 12 entries, and every triangle closes, 4 + 14 = 2 * 11 - 4 of them, as
+    # a triangulation's would. Only connectivity tells the two surfaces from one sphere.
+    torus = {(4 + i, 4 + (i + 1) % 7, 4 + (i + 3) % 7) for i in range(7)}
+    torus |= {(4 + i, 4 + (i + 3) % 7, 4 + (i + 2) % 7) for i in range(7)}
+    lists = rotation_lists({(0, 1, 2), (0, 2, 3), (0, 3, 1), (1, 3, 2)} | torus, 11)
+    assert sum(map(len, lists)) == 6 * 11 - 12
+    assert _statuses([lists]) == (["invalid"], ["invalid"])
+    assert "not connected" in _row(lists)["error"]
+
+
 @pytest.mark.parametrize(
     ("original", "copy", "between"),
     [(ORIGINAL, COPY, 0), (STAMPED, STALE, STAMPS - 1)],
@@ -440,7 +452,7 @@ def test_corners_of_an_earlier_grain_never_count(original, copy, between):
 
     grains = [original] + [TETRAHEDRON] * between + [copy]
     # The premise: given the original's stamp, the copy would pass.
-    following = np.zeros(64 * 64, np.uint16)
+    following = np.zeros(CORNERS, np.uint16)
     for g, lists in enumerate(grains[:-1]):
         assert _fast_check(lists, following, (g + 1) * STAMP_STEP)
     assert _fast_check(copy, following, STAMP_STEP)
@@ -473,10 +485,12 @@ TWICE_AROUND = [[1, 4, 5], [0, 5, 4, 2], [1, 4, 3], [0, 2, 4], [0, 3, 2, 1, 5], 
     [
         TWICE_AROUND,
         # Face 0's neighbour 2 written as 66: the same face once the index is taken modulo 64,
-        # as the fast path's tables take it.
+        # as the fast path's bitsets take it.
         [[1, 66, 3, 4], *OCTAHEDRON[1:]],
+        # And as 130: modulo 128 too, as the corner table of planar_code records takes it.
+        [[1, 130, 3, 4], *OCTAHEDRON[1:]],
     ],
-    ids=["a list twice around", "an index 64 too large"],
+    ids=["a list twice around", "an index 64 too large", "an index 128 too large"],
 )
 def test_what_only_the_repeat_and_range_checks_reject_is_invalid(lists):
     assert len(planar_code_record(lists)) == 7 * len(lists) - 11

@@ -221,7 +221,7 @@ def _tally_records(batch: PlanarCodeRecords) -> Tally:
     from grainclass._kernels.groups import EMPTY
 
     with np.errstate(over="ignore"):  # the hash wraps modulo 2**64 (seen without the JIT)
-        table, sums, pending = tally_kernel(batch.buf, batch.starts, batch.big_endian)
+        table, sums, pending = tally_kernel(batch.buf, batch.starts)
     used = table != EMPTY
     family, class_code, n_faces, round_k, split_k = census_fields(table[used])
     status = np.full(len(family), kernel_codes.OK)
