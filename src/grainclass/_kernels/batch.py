@@ -113,17 +113,14 @@ def _classify_small(g, n, triangular, adj, link, removed_round, family, fundamen
     return alive
 
 
-@njit_leaf
+@njit(inline="always")
 def _classify_ok_small(
     g, n, triangular, adj, link, removed_round, forest, strings, family, fundamental,
     trees_count, depth, belts, tree_offsets, tree_bytes, tree_length,
 ):  # fmt: skip
     """Classify ok grain g of at most 64 faces (``adj`` to ``removed_round`` as for
     :func:`_classify_small`; ``forest``, the scratch of the truncation-tree strings) into the
-    outputs of :func:`_classify_batch`. A call of its own, without reference counting: inlined
-    into the batch kernels, which count references, its arrays were counted up and down at
-    every grain, and the CSR kernel took 0.46 us a grain at n = 16 (0.55 with truncation-tree
-    strings) against 0.30 (0.39)."""
+    outputs of :func:`_classify_batch` (which writes these steps out itself)."""
     alive = _classify_small(g, n, triangular, adj, link, removed_round, family, fundamental, belts)
     if 4 < fundamental[g] < n:
         if strings:
@@ -188,10 +185,20 @@ def _classify_batch(
         if fast:
             status[g] = OK
             consistent[g] = True
-            _classify_ok_small(
-                g, n, triangular, adj, link, removed_round, forest, strings, family, fundamental,
-                trees_count, depth, belts, tree_offsets, tree_bytes, tree_length,
-            )  # fmt: skip
+            # _classify_ok_small written out: inlined, the arrays handed to it were counted up
+            # and down at every grain (the kernel took 0.45-0.47 us a grain at n = 16, 0.55-0.57
+            # with forest strings, against 0.29-0.30 and 0.38-0.40), and as a call of its own,
+            # without counting, as fast, it took 0.5 s longer to compile at a first run.
+            alive = _classify_small(
+                g, n, triangular, adj, link, removed_round, family, fundamental, belts
+            )
+            if 4 < fundamental[g] < n:
+                if strings:
+                    trees_count[g], depth[g], tree_length[g] = _forest_string_small(
+                        n, alive, removed_round, link, tree_bytes, tree_offsets[g], forest
+                    )
+                else:
+                    trees_count[g] = _roots_small(alive, n, link)
         else:
             status[g] = PENDING
 
