@@ -188,11 +188,16 @@ def _weinberg_batch(
     found them, or from :func:`_rotations`). Scratch arrays for up to ``max_faces`` faces (the
     rotation table, max_faces**2 int32, and the walks' table, max_faces**2 int64) are allocated
     once per call.
+
+    The rotation table is filled in one pass over the grain's darts without a branch: each
+    list's first dart is marked beforehand with the list's last face, which comes before it
+    (a loop per list mispredicted at each list's end: 130 ns a grain at n = 16, 60-70 so).
     """
     size = max(max_faces, 1) ** 2
     sigma = np.empty(size, np.int32)
     seen = np.zeros(size, np.int64)
     faces = np.empty(max(max_faces, 1), np.int64)
+    wrap = np.full(6 * max(max_faces, 1), -1, np.int64)  # per dart: -1, or a list's last face
     code = np.empty(max(6 * max_faces - 11, 1), np.int32)
     walks = np.empty((max(12 * max_faces - 24, 1), 3), np.int64)
     # Not the literal 0: numba compiled _weinberg once for a literal 0 and once for int64.
@@ -203,12 +208,20 @@ def _weinberg_batch(
         f0 = face_offsets[g]
         n = face_offsets[g + 1] - f0
         off = nbr_offsets[f0 : f0 + n + 1]
+        begin = off[0]
         for v in range(n):
             faces[v] = off[v + 1] - off[v]
-            before = rotations[off[v + 1] - 1]
-            for i in range(off[v], off[v + 1]):
-                sigma[at(v * n + before)] = rotations[at(i)]
-                before = rotations[at(i)]
+            wrap[at(off[v] - begin)] = rotations[at(off[v + 1] - 1)]
+        row = -n  # face v's row of sigma, v * n
+        before = 0
+        for i in range(begin, off[n]):
+            last_face = wrap[at(i - begin)]
+            first = last_face >= 0
+            row += n if first else 0
+            before = last_face if first else before
+            sigma[at(row + before)] = rotations[at(i)]
+            before = int(rotations[at(i)])
+            wrap[at(i - begin)] = -1
         if gen > _MAX_STAMP:  # a grain makes at most 12n walks: far from overflowing
             seen[:] = 0
             gen = np.int64(0)
