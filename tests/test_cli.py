@@ -577,6 +577,34 @@ def test_after_the_first_stop_signal_the_others_are_let_go(monkeypatch):
         cli_module._stop(signal.SIGINT, None)
 
 
+@pytest.mark.parametrize("caught", [True, False], ids=["sent again", "premise: lost"])
+def test_a_stop_raised_where_python_ignores_exceptions_is_sent_again(caught):
+    """Ctrl-C once reached a census in a weakref's callback, where Python ignores the exception:
+    the census ran to its end, and would have let any later signal go."""
+    script = f"""
+import signal, sys, weakref
+from grainclass import cli
+if {caught}:
+    cli._catch_stops()
+else:
+    signal.signal(signal.SIGINT, cli._stop)
+class Grain: pass
+grain = Grain()
+# The signal handled while the callback runs, as the garbage collector may run one anywhere.
+ref = weakref.ref(grain, lambda ref: cli._stop(signal.SIGINT, None))
+try:
+    del grain
+    for _ in range(10**7):
+        pass
+    print("went on")
+except KeyboardInterrupt:
+    print("interrupted")
+"""
+    run = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=60)
+    assert run.stdout.strip() == ("interrupted" if caught else "went on"), run.stderr
+    assert ("Exception ignored" in run.stderr) is not caught
+
+
 def test_an_interrupt_just_after_the_rename_leaves_the_whole_file(tmp_path, monkeypatch):
     """The temporary file was renamed already: removing it failed, a traceback hid the
     interrupt."""

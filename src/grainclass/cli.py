@@ -5,6 +5,7 @@ Heavy imports (numba, pyarrow, pandas) happen inside the commands, so ``--help``
 
 from __future__ import annotations
 
+import _thread
 import gc
 import os
 import signal
@@ -710,6 +711,34 @@ def _stop(signum: int, frame: object) -> None:
     raise KeyboardInterrupt if signum == signal.SIGINT else _Stopped(signum)
 
 
+def _lost_stop(unraisable: sys.UnraisableHookArgs) -> None:
+    """``sys.unraisablehook``: a stop that :func:`_stop` raised where Python ignores exceptions
+    (a weakref's callback, a ``__del__`` run by the garbage collector) was lost, and with it
+    every later stop signal, which :func:`_stop` lets go: a census went on to its end after
+    Ctrl-C. The signal is sent again, from a thread of its own, to be raised in the code that
+    runs next (sent from here, it was raised here again; a ``threading.Thread`` waits for its
+    start, and it was raised in that wait)."""
+    global _stopping
+    stop = unraisable.exc_value
+    if not isinstance(stop, KeyboardInterrupt | _Stopped):
+        sys.__unraisablehook__(unraisable)
+        return
+    _stopping = False
+    signum = stop.signum if isinstance(stop, _Stopped) else signal.SIGINT
+    _thread.start_new_thread(signal.raise_signal, (signum,))
+
+
+def _catch_stops() -> None:
+    """Stop signals raise (:func:`_stop`), and are sent again if raised where Python ignores
+    exceptions (:func:`_lost_stop`)."""
+    for name in _STOPS:
+        # One ignored already stays so: nohup ignores SIGHUP for a run to outlive its terminal,
+        # and a shell, SIGINT for a job it starts in the background.
+        if hasattr(signal, name) and signal.getsignal(getattr(signal, name)) != signal.SIG_IGN:
+            signal.signal(getattr(signal, name), _stop)
+    sys.unraisablehook = _lost_stop
+
+
 def _stop_worker_pools() -> None:
     """Worker processes of an interrupted run, if it started any, stopped before exit."""
     if "grainclass.parallel" in sys.modules:  # else none was started
@@ -734,11 +763,7 @@ def main() -> None:
     # grainclass multiplies none large enough to use them.
     os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
     warnings.showwarning = _show_warning
-    for name in _STOPS:
-        # One ignored already stays so: nohup ignores SIGHUP for a run to outlive its terminal,
-        # and a shell, SIGINT for a job it starts in the background.
-        if hasattr(signal, name) and signal.getsignal(getattr(signal, name)) != signal.SIG_IGN:
-            signal.signal(getattr(signal, name), _stop)
+    _catch_stops()
     stopped = False
     try:
         code = cli.main(standalone_mode=False)
