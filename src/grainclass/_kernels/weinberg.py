@@ -103,11 +103,11 @@ def _weinberg(n, shift, rot, off, sigma, faces, best, gen, seen, code, walks, ke
     smallest code. That leaves 1.4 walks a grain at n = 16, where 1.0 give the smallest code:
     each is walked to its end or until it exceeds the best so far. The least s is found first,
     so that only the edges of the smallest faces are looked at (a fifth of the time went on
-    weighing every start). Then every start is weighed and stored, one integer for its edge and
-    turn, and those of the least weight are moved down: a branch on each face's size and on
-    each weight, and three stores a start, took 110-120 ns a grain at n = 16, as long as a
-    third of the first walk. With both changes the kernel takes 498-566 ns a grain at n = 16
-    against 565-615 (plantri's part 0/17, alternated runs).
+    weighing every start). Then every start is weighed and stored, its edge and turn packed in
+    one integer, and those of the least weight are moved down, without a branch. The weighing
+    took 110-120 ns a grain at n = 16 (plantri's part 0/17), a third of the first walk's time;
+    without its branches alone it was no faster, with one store a start instead of three the
+    kernel took 516-537 ns a grain against 569-599 (alternated runs).
     """
     t = 2 * n - 4
     length = 3 * t + 1  # 2E + 1 with E = 3t/2
