@@ -139,6 +139,50 @@ def test_a_fifo_is_opened_by_the_read_ahead_and_read_whole(tmp_path):
     stream.close()
 
 
+def test_a_fifo_closed_under_its_thread_is_left_to_the_thread(tmp_path, monkeypatch):
+    """close() while the thread is about to read the FIFO: the FIFO's descriptor stays the
+    thread's until its read is done, so a pipe opened meanwhile cannot get that descriptor and
+    lose its bytes to the read; the thread closes the FIFO when it ends."""
+    about_to_read, go_on = threading.Event(), threading.Event()
+    read = os.read
+    thread_read: list[bytes | OSError] = []
+
+    def read_after_a_pause(fd: int, size: int) -> bytes:
+        if threading.current_thread().name != "grainclass-read-ahead":
+            return read(fd, size)
+        about_to_read.set()
+        go_on.wait(timeout=30)
+        try:
+            thread_read.append(read(fd, size))
+        except OSError as exc:
+            thread_read.append(exc)
+            raise
+        return thread_read[-1]
+
+    monkeypatch.setattr(os, "read", read_after_a_pause)
+    fifo = tmp_path / "fifo"
+    os.mkfifo(fifo)
+    before = set(threading.enumerate())
+    stream = ReadAhead(str(fifo))
+    (thread,) = set(threading.enumerate()) - before
+    writer = os.open(fifo, os.O_WRONLY)  # waits for the thread to open the FIFO
+    assert about_to_read.wait(timeout=30)
+    os.write(writer, b"fifo")
+    stream.close()
+    other_read_end, other_write_end = os.pipe()
+    os.write(other_write_end, b"theirs")
+    go_on.set()
+    thread.join(timeout=30)
+    assert not thread.is_alive()
+    assert thread_read == [b"fifo"]
+    os.set_blocking(other_read_end, False)
+    assert read(other_read_end, 100) == b"theirs"
+    with pytest.raises(BrokenPipeError):  # the thread closed the FIFO's reading end
+        os.write(writer, b"more")
+    for fd in (writer, other_read_end, other_write_end):
+        os.close(fd)
+
+
 def test_a_fifo_that_cannot_be_opened_fails_the_first_read(tmp_path):
     with pytest.raises(IsADirectoryError):
         ReadAhead(str(tmp_path)).readinto(bytearray(10))

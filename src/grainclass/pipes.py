@@ -87,7 +87,10 @@ class ReadAhead(io.RawIOBase):
     ``source`` is an open pipe's file descriptor, or the path of a FIFO (a process
     substitution's ``/dev/fd/63`` too), which the thread opens, and so may wait for a writer
     without holding up the command; ``gather`` is then found once it is open, and an error
-    opening it is the first read's.
+    opening it is the first read's. The thread also closes the FIFO, when it ends: :meth:`close`
+    does not, since a descriptor closed while the thread is about to read it could go to a file
+    opened meanwhile, whose bytes that read would take. (A FIFO whose writer neither writes nor
+    ends stays open after :meth:`close` until the process ends.)
     """
 
     def __init__(self, source: int | str, gather: bool = False, limit: int = AHEAD_BYTES) -> None:
@@ -104,16 +107,22 @@ class ReadAhead(io.RawIOBase):
         threading.Thread(target=self._run, name="grainclass-read-ahead", daemon=True).start()
 
     def _run(self) -> None:
+        try:
+            self._read_ahead()
+        finally:
+            if self._opened is not None:
+                self._opened.close()
+
+    def _read_ahead(self) -> None:
         if isinstance(self._source, str):
             try:
-                self._opened = open(self._source, "rb", buffering=0)  # noqa: SIM115 (close())
+                self._opened = open(self._source, "rb", buffering=0)  # noqa: SIM115 (closed by _run)
             except OSError as exc:
                 with self._changed:
                     self._error, self._ended = exc, True
                     self._changed.notify_all()
                 return
             if self.closed:  # closed while the FIFO waited for its writer
-                self._opened.close()
                 return
             self._gather = gathers_reads(self._opened)
             self._source = self._opened.fileno()
@@ -165,8 +174,6 @@ class ReadAhead(io.RawIOBase):
         with self._changed:
             super().close()
             self._changed.notify_all()
-            if self._opened is not None:
-                self._opened.close()
 
 
 # The stream read ahead (standard input's), and its ReadAhead.
