@@ -128,13 +128,13 @@ def _weinberg(n, shift, rot, off, sigma, faces, best, gen, seen, code, walks, ke
         # face of the first edge is x, and the opposite face is the third face at the start.
         for i in range(off[v], off[v + 1]):
             x = int(rot[at(i)])  # packed below into 64 bits, also without the JIT
-            right = faces[at(sigma[at(v << shift | x)])] * sizes + faces[at(x)]
-            left = faces[at(sigma[at(x << shift | v)])] * sizes + faces[at(x)]
+            key_right = faces[at(sigma[at(v << shift | x)])] * sizes + faces[at(x)]
+            key_left = faces[at(sigma[at(x << shift | v)])] * sizes + faces[at(x)]
             # a start packed in one integer: its edge a -> b and its turn, 1 right, 0 left
-            walks[at(starts)], keys[at(starts)] = (v << 32) | (x << 1) | 1, right
-            walks[at(starts + 1)], keys[at(starts + 1)] = (x << 32) | (v << 1), left
+            walks[at(starts)], keys[at(starts)] = (v << 32) | (x << 1) | 1, key_right
+            walks[at(starts + 1)], keys[at(starts + 1)] = (x << 32) | (v << 1), key_left
             starts += 2
-            least = min(least, right, left)
+            least = min(least, key_right, key_left)
     count = 0
     for j in range(starts):  # count never passes j
         walks[at(count)] = walks[at(j)]
