@@ -145,10 +145,11 @@ def test_a_fifo_closed_under_its_thread_is_left_to_the_thread(tmp_path, monkeypa
     lose its bytes to the read; the thread closes the FIFO when it ends."""
     about_to_read, go_on = threading.Event(), threading.Event()
     read = os.read
+    paused: list[threading.Thread] = []  # this stream's thread, not another test's
     thread_read: list[bytes | OSError] = []
 
     def read_after_a_pause(fd: int, size: int) -> bytes:
-        if threading.current_thread().name != "grainclass-read-ahead":
+        if threading.current_thread() not in paused:
             return read(fd, size)
         about_to_read.set()
         go_on.wait(timeout=30)
@@ -165,6 +166,7 @@ def test_a_fifo_closed_under_its_thread_is_left_to_the_thread(tmp_path, monkeypa
     before = set(threading.enumerate())
     stream = ReadAhead(str(fifo))
     (thread,) = set(threading.enumerate()) - before
+    paused.append(thread)
     writer = os.open(fifo, os.O_WRONLY)  # waits for the thread to open the FIFO
     assert about_to_read.wait(timeout=30)
     os.write(writer, b"fifo")

@@ -115,13 +115,13 @@ def _weinberg(n, shift, rot, off, sigma, faces, best, gen, seen, code, walks, ke
     smallest = faces[0]
     for v in range(1, n):
         smallest = min(smallest, faces[v])
-    count = 0
+    n_smallest = 0
     for v in range(n):
-        smallest_faces[at(count)] = v
-        count += faces[v] == smallest
+        smallest_faces[at(n_smallest)] = v
+        n_smallest += faces[v] == smallest
     least = sizes * sizes
     starts = 0
-    for k in range(count):
+    for k in range(n_smallest):
         v = smallest_faces[at(k)]
         # The walks that go round face v first: along v -> x turning right (face v is right of
         # that edge), along x -> v turning left (face v is left of it). Either way the other
