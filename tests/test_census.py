@@ -24,11 +24,11 @@ from grainclass.census import (
     CensusProgress,
     Part,
     PartResult,
-    ProgressPrinter,
     ProgressTracker,
     dask_client,
     run_census,
 )
+from grainclass.cli.progress import CensusPrinter
 from grainclass.pipeline import tallies
 from grainclass.summary import summarize
 from test_enumeration import CLASS_COLUMNS, SPLIT, TABLE_II
@@ -318,7 +318,7 @@ def test_time_left_comes_from_plantri_counts_then_parts_then_growth():
 
 
 def test_progress_lines_in_a_log_are_spaced_out(capsys):
-    printer = ProgressPrinter(every=3600)
+    printer = CensusPrinter(every=3600)
     for done in (1, 2, 3, 4, 4):
         printer(CensusProgress(done, 4, 1000 * done, 2500.0, 60.0 * (4 - done)))
     lines = capsys.readouterr().err.splitlines()

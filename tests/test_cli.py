@@ -16,7 +16,7 @@ from click.testing import CliRunner
 
 from conftest import EXAMPLES, ROOT
 from grainclass import cli as cli_module
-from grainclass.cli import cli
+from grainclass.cli import cli, signals
 from grainclass.errors import EmptyInputWarning
 from grainclass.parquet import GrainTableWriter
 from grainclass.schema import GRAIN_SCHEMA
@@ -33,6 +33,39 @@ def _classify(runner, tmp_path, *inputs, extra=()):
     out = tmp_path / "grains.parquet"
     result = runner.invoke(cli, ["classify", *map(str, inputs), "-o", str(out), *extra])
     return result, out
+
+
+@pytest.mark.parametrize(
+    ("inputs", "written"),
+    [
+        (["polytopes.txt"], "polytopes.parquet"),
+        (["plantri-10.pc"], "plantri-10.parquet"),
+        (["polytopes.txt", "plantri-10.pc"], "out.parquet"),
+    ],
+)
+def test_classify_without_o_writes_beside_the_user(runner, tmp_path, monkeypatch, inputs, written):
+    """`grainclass classify dataset.txt` is the first way users are told to run grainclass: it
+    writes dataset.parquet in the current directory and says so."""
+    monkeypatch.chdir(tmp_path)
+    result = runner.invoke(cli, ["classify", *(str(EXAMPLES / name) for name in inputs)])
+    assert result.exit_code == 0, result.output
+    assert sorted(p.name for p in tmp_path.iterdir()) == [written]
+    expected = {"polytopes.txt": 13, "plantri-10.pc": 233}
+    assert pq.read_table(tmp_path / written).num_rows == sum(expected[i] for i in inputs)
+    assert result.stderr.rstrip().endswith(f"written to {written}")
+
+
+def test_classify_without_o_names_a_folder_input_and_standard_input(runner, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    dump = tmp_path / "dump" / "21000"
+    dump.mkdir(parents=True)
+    (dump / "two_cubes.fe").write_bytes((ROOT / "tests/data/evolver/two_cubes.fe").read_bytes())
+    result = runner.invoke(cli, ["classify", "dump/21000/", "-q"])
+    assert result.exit_code == 0, result.output
+    assert pq.read_table(tmp_path / "21000.parquet").num_rows == 2
+    result = runner.invoke(cli, ["classify", "-"], input=CUBE_LINE)
+    assert result.exit_code == 0, result.output
+    assert pq.read_table(tmp_path / "out.parquet").column("grain_id").to_pylist() == ["cube"]
 
 
 def test_classify_writes_one_row_per_grain_in_input_order(runner, tmp_path):
@@ -106,7 +139,6 @@ def test_classify_missing_input_exits_1_and_leaves_no_file(runner, tmp_path):
 @pytest.mark.parametrize(
     "args",
     [
-        ["classify", "x.txt"],  # no -o
         ["classify", "-o", "x.parquet"],  # no input
         ["classify", "x.txt", "-o", "y", "--format", "xml"],
         ["classify", "x.txt", "-o", "y", "--chunk-size", "0"],
@@ -158,7 +190,7 @@ def test_ctrl_c_exits_130(monkeypatch, tmp_path, capsys):
     import signal
 
     # main() installs its signal handlers in this process: they go when the test is done.
-    monkeypatch.setattr(cli_module, "_stopping", False)
+    monkeypatch.setattr(signals, "_stopping", False)
     handlers = {s: signal.getsignal(s) for s in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP)}
     try:
         with pytest.raises(SystemExit) as exit_info:
@@ -380,17 +412,18 @@ def test_garbage_collection_is_off_for_start_up_only(tmp_path):
     code = (
         "import gc, sys\n"
         "from grainclass import cli\n"
+        "from grainclass.cli import startup\n"
         "made, passed = [], []\n"
         "def batches(items):\n"
         "    for item in items:\n"
         "        made.append(gc.isenabled())\n"
         "        yield item\n"
-        "resume = cli._after_start_up\n"
+        "resume = startup.after_start_up\n"
         "def spy(items):\n"
         "    for item in resume(batches(items)):\n"
         "        passed.append(gc.isenabled())\n"
         "        yield item\n"
-        "cli._after_start_up = spy\n"
+        "startup.after_start_up = spy\n"
         "sys.argv = ['grainclass', *sys.argv[1:]]\n"
         "try:\n    cli.main()\nexcept SystemExit as exc:\n    assert not exc.code, exc.code\n"
         "print(made, passed, gc.isenabled(), gc.get_freeze_count() > 0)\n"
@@ -567,14 +600,14 @@ def test_after_the_first_stop_signal_the_others_are_let_go(monkeypatch):
     clean-up of the first, or ended the shutdown in a traceback."""
     import signal
 
-    monkeypatch.setattr(cli_module, "_stopping", False)
-    with pytest.raises(cli_module._Stopped):
-        cli_module._stop(signal.SIGTERM, None)
-    assert cli_module._stop(signal.SIGINT, None) is None
-    assert cli_module._stop(signal.SIGTERM, None) is None
-    monkeypatch.setattr(cli_module, "_stopping", False)
+    monkeypatch.setattr(signals, "_stopping", False)
+    with pytest.raises(signals.Stopped):
+        signals.stop(signal.SIGTERM, None)
+    assert signals.stop(signal.SIGINT, None) is None
+    assert signals.stop(signal.SIGTERM, None) is None
+    monkeypatch.setattr(signals, "_stopping", False)
     with pytest.raises(KeyboardInterrupt):
-        cli_module._stop(signal.SIGINT, None)
+        signals.stop(signal.SIGINT, None)
 
 
 @pytest.mark.parametrize("caught", [True, False], ids=["sent again", "premise: lost"])
@@ -583,15 +616,15 @@ def test_a_stop_raised_where_python_ignores_exceptions_is_sent_again(caught):
     the census ran to its end, and would have let any later signal go."""
     script = f"""
 import signal, sys, weakref
-from grainclass import cli
+from grainclass.cli import signals
 if {caught}:
-    cli._catch_stops()
+    signals.catch_stops()
 else:
-    signal.signal(signal.SIGINT, cli._stop)
+    signal.signal(signal.SIGINT, signals.stop)
 class Grain: pass
 grain = Grain()
 # The signal handled while the callback runs, as the garbage collector may run one anywhere.
-ref = weakref.ref(grain, lambda ref: cli._stop(signal.SIGINT, None))
+ref = weakref.ref(grain, lambda ref: signals.stop(signal.SIGINT, None))
 try:
     del grain
     for _ in range(10**7):

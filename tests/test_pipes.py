@@ -111,8 +111,8 @@ def test_only_a_pipe_is_read_ahead(tmp_path):
 
 
 def test_standard_input_read_ahead_summarizes_as_the_file(tmp_path, plantri):
-    # The command line reads a pipe ahead of use (cli._read_ahead): what it counts is what the
-    # same records give from a file.
+    # The command line reads a pipe ahead of use (cli.startup.read_ahead): what it counts is
+    # what the same records give from a file.
     path = tmp_path / "p11.pc"
     subprocess.run([plantri, "11", str(path)], check=True, capture_output=True)
     command = [sys.executable, "-m", "grainclass", "summarize", "--format", "csv", "-q"]

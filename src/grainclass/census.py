@@ -15,11 +15,9 @@ from __future__ import annotations
 import contextlib
 import json
 import logging
-import math
 import os
 import re
 import subprocess
-import sys
 import threading
 import time
 import uuid
@@ -648,40 +646,3 @@ def dask_setup(worker: object) -> None:
     from grainclass.parallel import end_quietly_on_interrupt
 
     end_quietly_on_interrupt()
-
-
-def format_seconds(seconds: float | None) -> str:
-    """``1:02:03``-style time for progress lines; ``?`` when unknown."""
-    if seconds is None or not math.isfinite(seconds):
-        return "?"
-    seconds = round(seconds)
-    return f"{seconds // 3600}:{seconds // 60 % 60:02d}:{seconds % 60:02d}"
-
-
-def progress_line(progress: CensusProgress) -> str:
-    return (
-        f"census: {progress.done}/{progress.total} parts, {progress.grains:,} triangulations "
-        f"({progress.rate:,.0f}/s), about {format_seconds(progress.seconds_left)} left"
-    )
-
-
-class ProgressPrinter:
-    """Progress on standard error: redrawn in place on a terminal; elsewhere (a log file) a line
-    at most every ``every`` seconds, and one when the last part is in."""
-
-    def __init__(self, every: float = 10.0) -> None:
-        self.every = every
-        self._printed = -math.inf
-        self._ended = False
-
-    def __call__(self, progress: CensusProgress) -> None:
-        last = progress.done == progress.total
-        if self._ended:
-            return
-        self._ended = last
-        if sys.stderr.isatty():
-            sys.stderr.write("\r" + progress_line(progress) + "\033[K" + ("\n" if last else ""))
-        elif last or time.monotonic() - self._printed >= self.every:
-            sys.stderr.write(progress_line(progress) + "\n")
-            self._printed = time.monotonic()
-        sys.stderr.flush()

@@ -7,9 +7,7 @@ classifies: the compiled kernels release the GIL, so the two overlap on separate
 from __future__ import annotations
 
 import queue
-import sys
 import threading
-import time
 from collections.abc import Iterable, Iterator, Sequence
 from typing import TYPE_CHECKING, TypeVar
 
@@ -162,28 +160,3 @@ def tallies(
             yield from map_ordered(
                 lambda batch: tally_batch(batch, include_boundary, types), prefetch(watch(batches))
             )
-
-
-class Progress:
-    """Grains done and grains per second on standard error, redrawn in place."""
-
-    def __init__(self, enabled: bool) -> None:
-        self.enabled = enabled
-        self.grains = 0
-        self.start = time.perf_counter()
-        self._drawn = 0.0
-
-    def wrap(self, tables: Iterable[T]) -> Iterator[T]:
-        """Pass ``tables`` (tables or batches: anything with a length) through, counting."""
-        for table in tables:
-            self.grains += len(table)  # type: ignore[arg-type]
-            now = time.perf_counter()
-            if self.enabled and now - self._drawn > 0.2:
-                rate = self.grains / max(now - self.start, 1e-9)
-                sys.stderr.write(f"\r{self.grains:,} grains, {rate:,.0f} grains/s ")
-                sys.stderr.flush()
-                self._drawn = now
-            yield table
-        if self.enabled and self._drawn:
-            sys.stderr.write("\r\033[K")
-            sys.stderr.flush()

@@ -1,0 +1,113 @@
+"""``grainclass census``: every triangulation of the sphere with N vertices, on Dask."""
+
+from __future__ import annotations
+
+import click
+
+from grainclass.cli import exit_codes, options, startup
+
+
+@click.command("census", epilog=exit_codes.CENSUS)
+@click.argument("n_values", nargs=-1, required=True, metavar="N...", callback=options.vertex_counts)
+@click.option(
+    "-o",
+    "--output",
+    required=True,
+    metavar="DIR",
+    callback=options.nonempty_path,
+    type=click.Path(file_okay=False),
+    help="Census directory: checkpoints, then the tables (Parquet and CSV) and provenance.json.",
+)
+@click.option(
+    "--parts",
+    type=click.IntRange(min=1),
+    default=8,
+    show_default=True,
+    help="Tasks per N (plantri's res/mod); a rerun must give the same number to resume.",
+)
+@click.option(
+    "--scheduler",
+    metavar="ADDRESS",
+    help="Run on an existing Dask cluster (tcp://host:port) instead of a local one.",
+)
+@click.option(
+    "--workers",
+    type=click.IntRange(min=1),
+    help="Worker processes of the local cluster (default: one per CPU this process may use).",
+)
+@options.chunk_size("Triangulations per batch inside a task.")
+@click.option("--plantri", metavar="PATH", help="plantri binary (default: passagemath-plantri's).")
+@options.quiet("No progress on stderr.")
+def census_cmd(
+    n_values: list[int],
+    output: str,
+    parts: int,
+    scheduler: str | None,
+    workers: int | None,
+    chunk_size: int,
+    plantri: str | None,
+    quiet: bool,
+) -> None:
+    """Classify every triangulation of the sphere with N vertices, in parts on Dask.
+
+    N is a number of vertices or a range A..B: `grainclass census 4..16 -o census/`. Each part
+    streams plantri's output through the classification into counts, saved in DIR as soon as
+    it finishes; running the same command again skips finished parts. At the end the counts are
+    checked against plantri's own (-u, -c4, -m4) and the tables are printed and written to DIR.
+    Needs the census extra: pip install 'grainclass[census]'.
+    """
+    from grainclass.census import dask_client, run_census
+    from grainclass.cli.progress import CensusPrinter
+    from grainclass.errors import GrainclassError
+
+    startup.resume_collection()
+    try:
+        import distributed  # noqa: F401 (the census extra)
+    except ImportError as exc:
+        raise click.ClickException(
+            f"census needs Dask ({exc.name} is missing): pip install 'grainclass[census]'"
+        ) from None
+    try:
+        with dask_client(scheduler, workers) as client:
+            result = run_census(
+                n_values,
+                parts,
+                output,
+                client,
+                chunk_size,
+                plantri,
+                report=None if quiet else CensusPrinter(),
+            )
+    except (GrainclassError, OSError) as exc:
+        raise click.ClickException(str(exc)) from None
+    _report(result, output)
+
+
+def _report(result, output: str) -> None:
+    """The census's tables and cross-checks on standard output, what it did on standard error."""
+    from grainclass.cli.output import opened, write_all
+    from grainclass.render import render
+
+    click.echo(
+        f"census: {len(result.parts)} parts ({result.computed} computed now, "
+        f"{result.skipped} from earlier runs) in {result.seconds:.1f} s",
+        err=True,
+    )
+    for failure in result.failures:
+        click.echo(f"census: failed: {failure}", err=True)
+    if result.summary is None:
+        raise click.ClickException(
+            f"{len(result.failures)} task(s) failed; finished parts are kept in {output}: "
+            "run the same command again to retry the rest"
+        )
+    with opened("-") as sink:
+        write_all(sink, render(result.summary, ("classes", "split"), "text"))
+    click.echo("Cross-checks against plantri's own counts")
+    for check in result.checks:
+        verdict = "ok" if check.ok else "MISMATCH"
+        click.echo(
+            f"  n={check.n:<3} {check.what:<28} {check.census:>12} {check.plantri:>12}  {verdict}"
+        )
+    if not result.ok:
+        raise click.ClickException("the census disagrees with plantri (see the cross-checks)")
+    click.echo(f"tables and provenance written to {output}", err=True)

@@ -1,0 +1,82 @@
+"""Progress on standard error: grains and grains per second while a command reads, parts and
+time left while a census runs."""
+
+from __future__ import annotations
+
+import math
+import sys
+import time
+from collections.abc import Iterable, Iterator
+from typing import TYPE_CHECKING, TypeVar
+
+if TYPE_CHECKING:
+    from grainclass.census import CensusProgress
+
+T = TypeVar("T")
+
+
+class Progress:
+    """Grains done and grains per second, redrawn in place; off unless ``enabled``."""
+
+    def __init__(self, enabled: bool) -> None:
+        self.enabled = enabled
+        self.grains = 0
+        self.start = time.perf_counter()
+        self._drawn = 0.0
+
+    @classmethod
+    def on_terminal(cls, quiet: bool) -> Progress:
+        """Progress drawn when standard error is a terminal, unless ``quiet``."""
+        return cls(enabled=not quiet and sys.stderr.isatty())
+
+    def wrap(self, tables: Iterable[T]) -> Iterator[T]:
+        """Pass ``tables`` (tables or batches: anything with a length) through, counting."""
+        for table in tables:
+            self.grains += len(table)  # type: ignore[arg-type]
+            now = time.perf_counter()
+            if self.enabled and now - self._drawn > 0.2:
+                rate = self.grains / max(now - self.start, 1e-9)
+                sys.stderr.write(f"\r{self.grains:,} grains, {rate:,.0f} grains/s ")
+                sys.stderr.flush()
+                self._drawn = now
+            yield table
+        if self.enabled and self._drawn:
+            sys.stderr.write("\r\033[K")
+            sys.stderr.flush()
+
+
+def format_seconds(seconds: float | None) -> str:
+    """``1:02:03``-style time for progress lines; ``?`` when unknown."""
+    if seconds is None or not math.isfinite(seconds):
+        return "?"
+    seconds = round(seconds)
+    return f"{seconds // 3600}:{seconds // 60 % 60:02d}:{seconds % 60:02d}"
+
+
+def census_line(progress: CensusProgress) -> str:
+    return (
+        f"census: {progress.done}/{progress.total} parts, {progress.grains:,} triangulations "
+        f"({progress.rate:,.0f}/s), about {format_seconds(progress.seconds_left)} left"
+    )
+
+
+class CensusPrinter:
+    """A census's progress: redrawn in place on a terminal; elsewhere (a log file) a line at
+    most every ``every`` seconds, and one when the last part is in."""
+
+    def __init__(self, every: float = 10.0) -> None:
+        self.every = every
+        self._printed = -math.inf
+        self._ended = False
+
+    def __call__(self, progress: CensusProgress) -> None:
+        last = progress.done == progress.total
+        if self._ended:
+            return
+        self._ended = last
+        if sys.stderr.isatty():
+            sys.stderr.write("\r" + census_line(progress) + "\033[K" + ("\n" if last else ""))
+        elif last or time.monotonic() - self._printed >= self.every:
+            sys.stderr.write(census_line(progress) + "\n")
+            self._printed = time.monotonic()
+        sys.stderr.flush()

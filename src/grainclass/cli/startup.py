@@ -1,0 +1,46 @@
+"""What a command does while the libraries load: standard input read ahead, and the cyclic
+garbage collector kept off until the first batch is through (see :func:`grainclass.cli.main`)."""
+
+from __future__ import annotations
+
+import gc
+import sys
+from collections.abc import Iterable, Iterator, Sequence
+from typing import TypeVar
+
+T = TypeVar("T")
+
+
+def after_start_up(items: Iterable[T]) -> Iterator[T]:
+    """``items``, with the cyclic garbage collector (off since :func:`grainclass.cli.main`)
+    back on once the first has come through, or once there are none."""
+    try:
+        for item in items:
+            resume_collection()
+            yield item
+    finally:
+        resume_collection()
+
+
+def resume_collection() -> None:
+    """Collect cyclic garbage from now on, except among the objects made so far (the imported
+    libraries, the kernels loaded from numba's cache), which live as long as the process."""
+    if not gc.isenabled():
+        gc.freeze()
+        gc.enable()
+
+
+def read_ahead(inputs: Sequence[str], input_format: str) -> None:
+    """Standard input, if it is an input and a pipe, and the first input, if it is a FIFO (a
+    process substitution, ``<(plantri 16)``), are read from now on, while the libraries load
+    (:class:`grainclass.pipes.ReadAhead`), so that the program writing them need not wait.
+    Later FIFOs are opened in their turn; Surface Evolver files are read whole by their own
+    reader."""
+    from grainclass.pipes import read_ahead as read_pipe_ahead
+    from grainclass.pipes import read_ahead_path
+
+    if "-" in inputs:
+        read_pipe_ahead(sys.stdin.buffer)
+    first = inputs[0]
+    if first != "-" and input_format != "evolver" and not first.lower().endswith(".fe"):
+        read_ahead_path(first)
