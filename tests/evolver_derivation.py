@@ -138,10 +138,9 @@ def _loops(data: Datafile, body: int) -> dict[int, list[tuple[int, int, int]]]:
     for signed_facet in data.bodies[body]:
         loop = []
         for signed_edge in data.facets[abs(signed_facet)]:
-            tail, head = data.edges[abs(signed_edge)]
-            loop.append(
-                (tail, head, abs(signed_edge)) if signed_edge > 0 else (head, tail, -signed_edge)
-            )
+            edge = abs(signed_edge)
+            tail, head = data.edges[edge]
+            loop.append((tail, head, edge) if signed_edge > 0 else (head, tail, edge))
         if signed_facet < 0:
             loop = [(head, tail, edge) for tail, head, edge in reversed(loop)]
         for (_, head, _), (tail, _, _) in itertools.pairwise([*loop, loop[0]]):
