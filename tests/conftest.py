@@ -16,7 +16,8 @@ from grainclass.plantri import find_plantri
 
 ROOT = Path(__file__).resolve().parent.parent
 EXAMPLES = ROOT / "examples"
-EVOLVER_FIXTURES = ROOT.parent / "shared" / "fixtures" / "grain3d"  # Surface Evolver grains
+EVOLVER_DATA = ROOT / "tests" / "data" / "evolver"  # hand-made Surface Evolver foams
+EVOLVER_FIXTURES = EVOLVER_DATA / "grain3d"  # grains of a grain-growth simulation
 
 
 @pytest.fixture(scope="session")

@@ -1,35 +1,17 @@
 """Expected values for the Surface Evolver datafile reader.
 
-``FIXTURES``: the grain-growth grain files in /work/shared/fixtures/grain3d/ (one body each,
+``FIXTURES``: the grain-growth grain files in tests/data/evolver/grain3d/ (one body each,
 triangulated faces, ``color red`` triple-line edges). ``FOAMS``: the hand-made files in
 tests/data/evolver/.
 
-Plain data, no grainclass imports. Derived independently by a throwaway from-scratch Python script
-(numpy + networkx, NOT grainclass code) working directly on the datafiles:
-
-* Grain faces = connected sets of facets, joined across the edges that are not ``color red``.
-* Corner = vertex where >= 3 red edges meet; triple line = maximal chain of red edges between
-  corners; the number of sides of a face = number of triple lines on its boundary.
-* Dual triangulation: one vertex per face, one edge per triple line, one triangle per corner.
-  Reverse truncation = delete a degree-3 vertex (its 3 triangles become one), repeatedly, stopping
-  at the tetrahedron (stacked). Otherwise fundamental: flag if it has no empty triangle (3-cycle
-  that is not a face), sc otherwise. Truncation trees: a vertex stacked into a triangle created by
-  an earlier stacking is a child of the latest such vertex; with 2 truncations, two trees ->
-  flag+1+1, one tree -> flag+2. Class, truncation count and tree shapes were the same for 20
-  random removal orders.
-* Cross-checks for every grain: V - E + F = 2 (corners - triple lines + faces); every corner has
-  exactly 3 red edges and 3 faces; one fan centre (vertex without red edges) per face; no red edge
-  inside a face and no closed triple line without corners; for the ok grains the dual is a
-  triangulated sphere (every dual edge in exactly two triangles); a second, graph-only reduction
-  (networkx) gave the same fundamental size, truncation count and empty-triangle count.
-* Geometry: vertex positions unwrapped per body by breadth-first search over its edges (head
-  shifted by wrap * period relative to the tail); the wrap marks are consistent on every edge and
-  the unwrapped edges are all shorter than 0.13. Volume by the divergence theorem over the
-  body-signed facets (sum of det(a, b, c) / 6), recomputed about a shifted origin and by a second
-  per-facet placement: same value to 1e-12 relative. Area = sum of triangle areas. Rounded to 9
-  significant digits. In ALL ten fixtures the body facet signs as given already yield a POSITIVE
-  volume (outward normals): no flipping was needed. Every fixture body is closed (each edge in
-  exactly two of its facets, in opposite directions) and uses every facet of its file once.
+Plain data, no grainclass imports: the reviewed ground truth, kept as a literal table. It is
+derived from the datafiles alone by tests/evolver_derivation.py (numpy, networkx and the oracle
+of tests/reference.py, NOT grainclass code; its docstring gives the method and its
+cross-checks), and tests/test_evolver_expected.py checks that the derivation finds every entry,
+key by key, floats to the 9 significant digits kept here. ``python tests/evolver_derivation.py
+FILE...`` prints the counts the comments quote (facets, wrap marks, sides per face, truncation
+trees). In all ten fixtures the body facet signs as given yield a positive volume (outward
+normals): the derivation keeps the sign, and nothing is flipped.
 
 Keys: ``n_faces``; ``p_vector`` (counts of faces with 3, 4, 5, ... sides, up to the largest; None
 for degenerate grains); ``status`` ("ok" / "degenerate"); ``class`` and ``truncations`` (None for
@@ -195,8 +177,8 @@ FIXTURES = {
 }
 
 # Hand-made files in tests/data/evolver/, generated from explicit geometry by a throwaway script and
-# re-checked by the same from-scratch analysis as above (closure on the geometrically placed facets,
-# volume by the divergence theorem, area, corners, Euler characteristic, dual classification).
+# checked by the same derivation as above (foam_file_values in tests/evolver_derivation.py:
+# closure, volume by the divergence theorem, area, corners, Euler characteristic, classification).
 # In these files every polygon facet is one grain face: each lies between two different bodies
 # (two_cubes' shared square, every Kelvin facet) or on the outside, where no two facets of a body
 # are coplanar.

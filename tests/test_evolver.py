@@ -9,14 +9,14 @@ import pyarrow as pa
 import pytest
 from click.testing import CliRunner
 
-from conftest import EVOLVER_FIXTURES, ctrl_c_at_a_terminal
+from conftest import EVOLVER_DATA, EVOLVER_FIXTURES, ctrl_c_at_a_terminal
 from evolver_expected import FIXTURES, FOAMS
 from grainclass import classify, read_dataset
 from grainclass.cli import cli
 from grainclass.readers import sniff
 
 FIXTURE_DIR = EVOLVER_FIXTURES
-DATA = Path(__file__).resolve().parent / "data" / "evolver"
+DATA = EVOLVER_DATA
 
 
 def _rows(*paths, **kwargs) -> list[dict]:
