@@ -6,7 +6,12 @@ STAMP := $(VENV)/.installed-stamp
 KERNELS := $(wildcard src/grainclass/_kernels/*.py) src/grainclass/_numba.py
 KERNELS_STAMP := build/.kernels-stamp
 
-.PHONY: all install demo test test-nojit test-lowest lint bench reproduce-enumeration reproduce-voronoi reproduce-census bench-census clean
+# Seeds of the Poisson-Voronoi data set that `make figures` draws.
+FIGURE_SEEDS ?= 100000
+# One time step of a grain-growth simulation, one Surface Evolver file per grain.
+GRAIN_GROWTH ?= tests/data/evolver/grain3d
+
+.PHONY: all install demo figures test test-nojit test-lowest lint bench reproduce-enumeration reproduce-voronoi reproduce-census bench-census clean
 
 all: lint test
 
@@ -32,6 +37,21 @@ demo: install
 	@mkdir -p build
 	$(BIN)/grainclass classify examples/polytopes.txt examples/plantri-10.pc -o build/demo.parquet
 	$(BIN)/grainclass summarize build/demo.parquet --n 10
+
+# Every kind of `grainclass plot` for a fresh Poisson-Voronoi data set, and the evolution kind
+# for the bundled grain-growth grains, into build/figures/ (PNG and the numbers drawn as CSV).
+figures: install
+	@mkdir -p build/figures
+	$(BIN)/grainclass voronoi $(FIGURE_SEEDS) --seed 1 -o build/figures/pv.txt -q
+	$(BIN)/grainclass classify build/figures/pv.txt -o build/figures/pv.parquet -q
+	for kind in round classes faces-q round-q penalty ranks; do \
+		$(BIN)/grainclass plot $$kind build/figures/pv.parquet --label Poisson-Voronoi -q \
+			-o build/figures/$$kind.png --data build/figures/$$kind.csv || exit 1; \
+	done
+	$(BIN)/grainclass plot evolution $(GRAIN_GROWTH) --times 21000 --label grain-growth -q \
+		--series flag --series triangles --series tetrahedron --series cube --series 0:m \
+		-o build/figures/evolution.png --data build/figures/evolution.csv
+	@ls -l build/figures
 
 test: install
 	$(BIN)/python -m pytest

@@ -24,3 +24,9 @@ OUTPUT_FORMATS = ("text", "csv", "markdown", "latex", "json", "parquet")
 # The summary tables printed by default, in order; "geometry" only on request.
 TABLES = ("classes", "round", "split")
 ALL_TABLES = (*TABLES, "geometry")
+
+# Kinds of `grainclass plot`: the paper's figures.
+PLOT_KINDS = ("round", "classes", "faces-q", "round-q", "penalty", "ranks", "evolution")
+
+# Named grains that `grainclass plot evolution --series` follows beside the classes.
+NAMED_SERIES = ("tetrahedron", "cube", "dodecahedron", "0:m", "triangles")
