@@ -607,7 +607,7 @@ def dask_client(scheduler: str | None = None, workers: int | None = None) -> Ite
         with Client(scheduler) as client:
             yield client
         return
-    from grainclass.parallel import interrupts_blocked
+    from grainclass.parallel import available_cpus, interrupts_blocked
 
     # A worker restarted after a loss is not news here. silence_logs holds Dask's logs to errors
     # while the cluster runs, not while it closes: a census stopped by Ctrl-C logged its links
@@ -623,7 +623,7 @@ def dask_client(scheduler: str | None = None, workers: int | None = None) -> Ite
             with interrupts_blocked():
                 cluster = stack.enter_context(
                     LocalCluster(
-                        n_workers=workers or os.cpu_count() or 1,
+                        n_workers=workers or available_cpus(),
                         threads_per_worker=1,
                         processes=True,
                         # No dashboard (bokeh is not a dependency); the scheduler's small HTTP

@@ -30,7 +30,17 @@ from grainclass.errors import NoWorkersWarning
 T = TypeVar("T")
 R = TypeVar("R")
 
-_jobs = os.cpu_count() or 1
+
+def available_cpus() -> int:
+    """The CPUs this process may run on: its affinity mask where the system keeps one (a
+    container, ``taskset`` or a batch scheduler may allow fewer than the machine has), else
+    every CPU of the machine. Every default count of threads and workers comes from here."""
+    if hasattr(os, "sched_getaffinity"):
+        return len(os.sched_getaffinity(0)) or 1
+    return os.cpu_count() or 1
+
+
+_jobs = available_cpus()
 _pools: dict[str, ThreadPoolExecutor] = {}
 _in_batch_worker = threading.local()
 _running = 0  # tasks of the thread pools under way

@@ -18,7 +18,6 @@ import contextlib
 import functools
 import itertools
 import math
-import os
 import re
 from collections import defaultdict
 from collections.abc import Iterable, Iterator
@@ -28,7 +27,7 @@ import numpy as np
 
 from grainclass.batch import GrainBatch, csr_from_lists, no_body_has, tri_state
 from grainclass.errors import InputError
-from grainclass.parallel import worker_pool
+from grainclass.parallel import available_cpus, worker_pool
 
 # A datafile's sections, and what one numbered line of each is called in messages.
 SECTIONS = {
@@ -440,9 +439,10 @@ def read_evolver(
     grains: list[_Grain] = []
     with contextlib.ExitStack() as stack:
         per_file: Iterable[list[_Grain]] = map(read, paths)
-        if len(paths) >= PARALLEL_FILES and (os.cpu_count() or 1) > 1:
+        cpus = available_cpus()
+        if len(paths) >= PARALLEL_FILES and cpus > 1:
             # Parsing is pure Python: a folder of dumps is read by one process per core.
-            pool = worker_pool(os.cpu_count() or 1)
+            pool = worker_pool(cpus)
             stack.callback(pool.shutdown, wait=True, cancel_futures=True)
             per_file = pool.map(read, paths, chunksize=16)
         for file_grains in per_file:
