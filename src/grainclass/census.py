@@ -16,8 +16,6 @@ import contextlib
 import json
 import logging
 import os
-import re
-import subprocess
 import threading
 import time
 import uuid
@@ -29,6 +27,7 @@ from typing import TYPE_CHECKING
 
 from grainclass import DEFAULT_CHUNK_SIZE
 from grainclass.errors import GrainclassError
+from grainclass.plantri import CHECKS, plantri_count, plantri_version, run_plantri
 from grainclass.vocabulary import TABLES
 
 if TYPE_CHECKING:
@@ -37,13 +36,11 @@ if TYPE_CHECKING:
 
     from grainclass.summary import Summary
 
-CHECKS = {"all": ("-u",), "flag": ("-u", "-c4"), "min_degree_4": ("-u", "-m4")}
-_COUNT_LINE = re.compile(rb"(\d+) triangulations (?:written|generated)")
 PROGRESS_TOPIC = "grainclass-census-progress"
 
 
 class CensusError(GrainclassError):
-    """A part or a plantri count that could not be obtained."""
+    """A part whose triangulations read are not as many as plantri reports having written."""
 
 
 @dataclass(frozen=True, order=True)
@@ -74,57 +71,31 @@ class PartResult:
     seconds: float
 
 
-def plantri_command(plantri: str | None) -> str:
-    """The plantri to run: ``plantri`` if given, else the one ``find_plantri`` finds."""
-    from grainclass.plantri import find_plantri
-
-    return plantri or find_plantri()
-
-
-def _reported_count(stderr: bytes, command: list[str], returncode: int = 0) -> int:
-    """The number of triangulations plantri says it wrote or generated.
-
-    Raises
-    ------
-    CensusError
-        When plantri failed, or said no such number.
-    """
-    if returncode:
-        message = stderr.decode(errors="replace").strip()
-        raise CensusError(f"{' '.join(command)} failed (exit {returncode}): {message}")
-    found = _COUNT_LINE.search(stderr)
-    if not found:
-        message = stderr.decode(errors="replace").strip()
-        raise CensusError(f"{' '.join(command)}: no count in plantri's report: {message!r}")
-    return int(found.group(1))
-
-
 def count_part(part: Part, chunk_size: int, plantri: str | None = None) -> PartResult:
     """Enumerate one part with plantri and tally it (runs on a Dask worker).
 
     Raises
     ------
+    PlantriError
+        When plantri fails, or reports no number of triangulations.
     CensusError
-        When plantri fails, or reports another number of triangulations than were read.
+        When plantri reports another number of triangulations than were read.
     """
     from grainclass.parallel import set_jobs
     from grainclass.pipeline import prefetch
-    from grainclass.pipes import enlarge_pipe
     from grainclass.readers.planar_code import read_planar_code
     from grainclass.summary import merge_tallies, tally_batch
 
     set_jobs(1)  # parallel over parts: one thread per worker process
-    command = [plantri_command(plantri), *part.plantri_args()]
     start = time.perf_counter()
     frames: list[pd.DataFrame] = []
     grains = 0
     publish, published = _progress_publisher(), time.monotonic()
-    with subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE) as process:
-        enlarge_pipe(process.stdout)
+    with run_plantri(part.plantri_args(), plantri) as run:
         # Read in a thread of its own: read in turn with the counting, plantri would wait on
         # a full pipe while a chunk is counted (the task took plantri's time plus ours).
         for records in prefetch(
-            read_planar_code(process.stdout, f"plantri {part.name}", chunk_size, raw=True)
+            read_planar_code(run.stdout, f"plantri {part.name}", chunk_size, raw=True)
         ):
             tallied = tally_batch(records)
             grains += len(tallied)
@@ -134,11 +105,11 @@ def count_part(part: Part, chunk_size: int, plantri: str | None = None) -> PartR
             if publish is not None and time.monotonic() - published >= 1.0:
                 publish({"part": part.name, "grains": grains})
                 published = time.monotonic()
-        stderr = process.stderr.read()
-    reported = _reported_count(stderr, command, process.returncode)
+    reported = run.written
     if reported != grains:
         raise CensusError(
-            f"{' '.join(command)}: plantri reported {reported} triangulations, {grains} were read"
+            f"{' '.join(run.command)}: plantri reported {reported} triangulations, "
+            f"{grains} were read"
         )
     return PartResult(part, merge_tallies(frames), grains, reported, time.perf_counter() - start)
 
@@ -152,27 +123,6 @@ def _progress_publisher() -> Callable[[dict], None] | None:
     except (ImportError, ValueError):
         return None
     return lambda message: worker.log_event(PROGRESS_TOPIC, message)
-
-
-def plantri_count(n: int, check: str, plantri: str | None = None) -> int:
-    """plantri's own count of the triangulations with ``n`` vertices of a :data:`CHECKS` kind."""
-    flags = CHECKS[check]
-    if check != "all" and n < 6:
-        # plantri takes -c4 and -m4 only from n = 6; there are none below: a vertex degree sum
-        # of 6n - 12 >= 4n needs n >= 6.
-        return 0
-    command = [plantri_command(plantri), *flags, str(n)]
-    done = subprocess.run(command, capture_output=True, check=False)
-    return _reported_count(done.stderr, command, done.returncode)
-
-
-def plantri_version(plantri: str | None = None) -> str:
-    """plantri's version line, e.g. ``5.8 - March 4, 2026`` (from its usage message)."""
-    done = subprocess.run(
-        [plantri_command(plantri), "-help"], capture_output=True, check=False, text=True
-    )
-    found = re.search(r"[Pp]lantri version (.+)", done.stdout + done.stderr)
-    return found.group(1).strip() if found else "unknown"
 
 
 @dataclass
