@@ -160,7 +160,7 @@ def _classify_batch(
     Layout: grain g has faces ``face_offsets[g]:face_offsets[g+1]``; face f has the local
     neighbour indices ``neighbors[nbr_offsets[f]:nbr_offsets[f+1]]``. ``err`` is int64[G, 3]
     (code, a, b), ``consistent`` marks grains whose lists were already oriented one way,
-    ``belts`` int64[G, 3] (split_k, count, weight), ``tree_bytes`` holds 3n bytes per grain from
+    ``belts`` int64[G, 3] (split_k, count, penalty), ``tree_bytes`` holds 3n bytes per grain from
     ``tree_offsets[g]``. Family is -1 for grains that are not ok, depth 0 for fundamental ones.
     Grains with more than ``max_small`` faces skip the fast path. Without ``strings`` the
     truncation forests are only counted (trees_count; depth and tree bytes are left alone).

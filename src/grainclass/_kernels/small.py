@@ -9,6 +9,7 @@ makes :func:`_validate_small` say no, and the general path of ``validate.py``,
 
 import numpy as np
 
+from grainclass._kernels.belts import belt_penalty, split_type
 from grainclass._kernels.bits import ONE, ZERO, bit, full, lowest, popcount
 from grainclass._numba import at, njit, njit_leaf
 
@@ -264,10 +265,10 @@ def _has_empty_triangle_small(adj, alive):
 @njit_leaf
 def _four_belts_small(n, adj, out):
     """As ``belts._four_belts``: chordless 4-cycles a-b-c-d, each found once from its smallest
-    vertex a; writes ``out = (split_k, belts, sum of k * (n - k - 4))``.
+    vertex a; writes ``out = (split_k, belts, penalty)``.
     """
     everything = full(n)
-    split_k, belts, weight = 0, 0, 0
+    split_k, belts, penalty = 0, 0, 0
     for a in range(n):
         above_a = everything & ~full(a + 1)
         for c in range(a + 1, n):
@@ -284,8 +285,8 @@ def _four_belts_small(n, adj, out):
                     belt = bit(a) | bit(b) | bit(c) | bit(d)
                     rest = everything & ~belt
                     side = popcount(_component(adj, bit(lowest(rest)), rest))
-                    k = min(side, n - 4 - side)
+                    k = split_type(n, side)
                     belts += 1
-                    weight += k * (n - 4 - k)
+                    penalty += belt_penalty(n, k)
                     split_k = max(split_k, k)
-    out[0], out[1], out[2] = split_k, belts, weight
+    out[0], out[1], out[2] = split_k, belts, penalty
