@@ -28,6 +28,7 @@ import numpy as np
 from grainclass.batch import GrainBatch, csr_from_lists, no_body_has, tri_state
 from grainclass.errors import InputError
 from grainclass.parallel import available_cpus, worker_pool
+from grainclass.readers.sniffing import SNIFF_BYTES, not_grains
 
 # A datafile's sections, and what one numbered line of each is called in messages.
 SECTIONS = {
@@ -462,8 +463,6 @@ _NO_BODIES = (
 
 def _read_file(path: str, triple_edges: tuple[str, str]) -> list[_Grain]:
     """The grains of one datafile (a malformed file is one bad grain, not a failed run)."""
-    from grainclass.readers import SNIFF_BYTES, not_grains  # a package that imports this module
-
     stem = path.rsplit("/", 1)[-1].removesuffix(".fe")
     try:
         with open(path, "rb") as handle:
