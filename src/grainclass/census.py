@@ -93,7 +93,7 @@ def count_part(part: Part, chunk_size: int, plantri: str | None = None) -> PartR
     publish, published = _progress_publisher(), time.monotonic()
     with run_plantri(part.plantri_args(), plantri) as run:
         # Read in a thread of its own: read in turn with the counting, plantri would wait on
-        # a full pipe while a chunk is counted (the task took plantri's time plus ours).
+        # a full pipe while a chunk is counted (the task would take plantri's time plus ours).
         for records in prefetch(
             read_planar_code(run.stdout, f"plantri {part.name}", chunk_size, raw=True)
         ):
@@ -560,8 +560,8 @@ def dask_client(scheduler: str | None = None, workers: int | None = None) -> Ite
     from grainclass.parallel import available_cpus, interrupts_blocked
 
     # A worker restarted after a loss is not news here. silence_logs holds Dask's logs to errors
-    # while the cluster runs, not while it closes: a census stopped by Ctrl-C logged its links
-    # to the workers closing, with tracebacks. They are held so until the cluster is gone.
+    # while the cluster runs, not while it closes, when a census stopped by Ctrl-C would log its
+    # links to the workers closing, with tracebacks: they are held so until the cluster is gone.
     logs = logging.getLogger("distributed")
     level = logs.level
     logs.setLevel(logging.ERROR)
@@ -591,8 +591,8 @@ def dask_client(scheduler: str | None = None, workers: int | None = None) -> Ite
 
 def dask_setup(worker: object) -> None:
     """Run by each worker process of :func:`dask_client`'s local cluster once it has started:
-    Ctrl-C ends it at once and quietly (``parallel.end_quietly_on_interrupt``), where each
-    worker printed a page of traceback."""
+    Ctrl-C ends it at once and quietly (``parallel.end_quietly_on_interrupt``), not with a page
+    of traceback from each worker."""
     from grainclass.parallel import end_quietly_on_interrupt
 
     end_quietly_on_interrupt()

@@ -125,7 +125,8 @@ def poisson_voronoi(
 @contextmanager
 def _gc_paused() -> Iterator[None]:
     """No cyclic garbage collection while pyvoro2 builds and we read its millions of lists and
-    dicts (none of them in cycles): the collector's passes over them took 60% of the time."""
+    dicts (none of them in cycles): the collector's passes over them would take most of the
+    time."""
     enabled = gc.isenabled()
     gc.disable()
     try:
