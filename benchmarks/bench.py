@@ -25,6 +25,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from grainclass.parallel import available_cpus
 from grainclass.plantri import find_plantri
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -248,7 +249,7 @@ def bench_kernel(sizes: list[int], work: Path) -> None:
         inputs = [_kernel_inputs(b) for b in batches]
         classify(batches[0])
         tally_batch(records[0])
-        for threads in sorted({1, os.cpu_count() or 1}):
+        for threads in sorted({1, available_cpus()}):
             set_jobs(threads)
             rates = []
             for run in (
@@ -390,7 +391,7 @@ def bench_census(sizes: list[int], parts: int, work: Path) -> None:
     """``grainclass census`` on a local cluster (one worker per core) against plantri alone on
     the same parts, as many at a time as there are cores."""
     plantri = find_plantri()
-    cores = os.cpu_count() or 1
+    cores = available_cpus()
     gc = " ".join(GRAINCLASS)
     # A warm-up (its report on stderr too is not a figure of the benchmark).
     subprocess.run(
@@ -428,7 +429,7 @@ def main() -> None:
     args = parser.parse_args()
     if args.rounds < 1:
         parser.error("--rounds must be at least 1")
-    print(f"grainclass benchmarks on {os.cpu_count()} cores, {time.strftime('%Y-%m-%d %H:%M')}")
+    print(f"grainclass benchmarks on {available_cpus()} cores, {time.strftime('%Y-%m-%d %H:%M')}")
     with tempfile.TemporaryDirectory() as tmp:
         work = Path(tmp)
         if not args.census_only:

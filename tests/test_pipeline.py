@@ -88,6 +88,41 @@ def test_map_ordered_keeps_order_and_raises_a_workers_error_in_its_place():
         set_jobs(before)
 
 
+def test_available_cpus_follow_the_affinity_mask(monkeypatch):
+    """A container or ``taskset`` may allow this process fewer CPUs than the machine has."""
+    from grainclass.parallel import available_cpus
+
+    monkeypatch.setattr(os, "sched_getaffinity", lambda pid: {0, 3, 5}, raising=False)
+    monkeypatch.setattr(os, "cpu_count", lambda: 64)
+    assert available_cpus() == 3
+
+
+def test_available_cpus_without_an_affinity_mask_are_the_machines(monkeypatch):
+    from grainclass.parallel import available_cpus
+
+    monkeypatch.delattr(os, "sched_getaffinity", raising=False)
+    monkeypatch.setattr(os, "cpu_count", lambda: 6)
+    assert available_cpus() == 6
+    monkeypatch.setattr(os, "cpu_count", lambda: None)  # unknown
+    assert available_cpus() == 1
+
+
+def test_evolver_files_are_read_in_this_process_when_one_cpu_is_allowed(monkeypatch):
+    from pathlib import Path
+
+    from grainclass.readers import evolver
+
+    def no_pool(workers: int) -> None:
+        pytest.fail(f"a pool of {workers} workers where one CPU is allowed")
+
+    monkeypatch.setattr(os, "sched_getaffinity", lambda pid: {1}, raising=False)
+    monkeypatch.setattr(evolver, "PARALLEL_FILES", 2)
+    monkeypatch.setattr(evolver, "worker_pool", no_pool)
+    paths = sorted(str(p) for p in (Path(__file__).parent / "data" / "evolver").glob("*.fe"))
+    assert len(paths) >= 2
+    assert sum(len(batch) for batch in evolver.read_evolver(paths, 100)) >= len(paths)
+
+
 def _end_worker():
 
     os._exit(130)  # as a worker pool's worker ends on Ctrl-C

@@ -18,12 +18,10 @@ njit = functools.partial(numba.njit, **JIT)
 
 njit_leaf = functools.partial(numba.njit, _nrt=False, **JIT)
 """``@njit_leaf``: a kernel that allocates nothing, called once or more per grain, compiled
-without numba's reference counting (NRT). With it, every array passed in was counted up on
-entry and down on exit, each an atomic instruction: those two took over a third of the samples
-of the classification kernel at n = 16, most for the truncation forests' nine scratch arrays,
-and 4% without it; the kernel with forest strings took a sixth less time (505-668 ns a grain
-against 639-883, the best of five passes in each of six alternated runs). numba refuses to
-compile an allocation in such a kernel.
+without numba's reference counting (NRT): counting every array argument up on entry and down
+on exit, each an atomic instruction, dominates the per-grain cost of a kernel that hands many
+scratch arrays on (see docs/performance.md). numba refuses to compile an allocation in such a
+kernel.
 """
 
 
@@ -33,8 +31,8 @@ def at(i):
 
     numba lets a negative index count from the end, which costs every access through a signed
     integer a compare and a select; LLVM can rarely prove an index non-negative. An unsigned
-    index skips that fix-up. It pays in tight loops of loads and stores (the planar_code fill
-    took half the time, the Weinberg walks a quarter less, the per-grain table two fifths less);
-    where mispredicted branches take the time (the validation loops) it measured nothing.
+    index skips that fix-up, which counts in tight loops of loads and stores (the planar_code
+    fill, the Weinberg walks, the per-grain table), not where mispredicted branches take the
+    time (the validation loops); see docs/performance.md.
     """
     return np.uint64(i)

@@ -2,7 +2,8 @@
 
 Every column of a classification is built here with ``pa.Array.from_buffers``: besides
 skipping a checked conversion per row, this keeps pandas unimported, since ``pa.array`` imports
-it (0.3 s) to ask whether its input is a pandas object, and ``classify`` never needs it.
+it, a noticeable part of start-up, to ask whether its input is a pandas object, and ``classify``
+never needs it.
 """
 
 from __future__ import annotations
@@ -41,7 +42,7 @@ def numbers(values: np.ndarray, type_: pa.DataType, valid: np.ndarray | None = N
 
 def _numpy_dtype(type_: pa.DataType) -> np.dtype:
     """The numpy dtype of a fixed-width integer or float type: ``type_.to_pandas_dtype()``
-    imports pandas to answer in older pyarrow (15 to 18, of those tried)."""
+    imports pandas to answer in older pyarrow (15 to 18 at least)."""
     signed = "i" if pa.types.is_signed_integer(type_) else "u"
     kind = "f" if pa.types.is_floating(type_) else signed
     return np.dtype(f"{kind}{type_.bit_width // 8}")

@@ -16,8 +16,6 @@ import contextlib
 import json
 import logging
 import os
-import re
-import subprocess
 import threading
 import time
 import uuid
@@ -29,6 +27,7 @@ from typing import TYPE_CHECKING
 
 from grainclass import DEFAULT_CHUNK_SIZE
 from grainclass.errors import GrainclassError
+from grainclass.plantri import CHECKS, plantri_count, plantri_version, run_plantri
 from grainclass.vocabulary import TABLES
 
 if TYPE_CHECKING:
@@ -37,13 +36,11 @@ if TYPE_CHECKING:
 
     from grainclass.summary import Summary
 
-CHECKS = {"all": ("-u",), "flag": ("-u", "-c4"), "min_degree_4": ("-u", "-m4")}
-_COUNT_LINE = re.compile(rb"(\d+) triangulations (?:written|generated)")
 PROGRESS_TOPIC = "grainclass-census-progress"
 
 
 class CensusError(GrainclassError):
-    """A part or a plantri count that could not be obtained."""
+    """A part whose triangulations read are not as many as plantri reports having written."""
 
 
 @dataclass(frozen=True, order=True)
@@ -74,57 +71,31 @@ class PartResult:
     seconds: float
 
 
-def plantri_command(plantri: str | None) -> str:
-    """The plantri to run: ``plantri`` if given, else the one ``find_plantri`` finds."""
-    from grainclass.plantri import find_plantri
-
-    return plantri or find_plantri()
-
-
-def _reported_count(stderr: bytes, command: list[str], returncode: int = 0) -> int:
-    """The number of triangulations plantri says it wrote or generated.
-
-    Raises
-    ------
-    CensusError
-        When plantri failed, or said no such number.
-    """
-    if returncode:
-        message = stderr.decode(errors="replace").strip()
-        raise CensusError(f"{' '.join(command)} failed (exit {returncode}): {message}")
-    found = _COUNT_LINE.search(stderr)
-    if not found:
-        message = stderr.decode(errors="replace").strip()
-        raise CensusError(f"{' '.join(command)}: no count in plantri's report: {message!r}")
-    return int(found.group(1))
-
-
 def count_part(part: Part, chunk_size: int, plantri: str | None = None) -> PartResult:
     """Enumerate one part with plantri and tally it (runs on a Dask worker).
 
     Raises
     ------
+    PlantriError
+        When plantri fails, or reports no number of triangulations.
     CensusError
-        When plantri fails, or reports another number of triangulations than were read.
+        When plantri reports another number of triangulations than were read.
     """
     from grainclass.parallel import set_jobs
     from grainclass.pipeline import prefetch
-    from grainclass.pipes import enlarge_pipe
     from grainclass.readers.planar_code import read_planar_code
     from grainclass.summary import merge_tallies, tally_batch
 
     set_jobs(1)  # parallel over parts: one thread per worker process
-    command = [plantri_command(plantri), *part.plantri_args()]
     start = time.perf_counter()
     frames: list[pd.DataFrame] = []
     grains = 0
     publish, published = _progress_publisher(), time.monotonic()
-    with subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE) as process:
-        enlarge_pipe(process.stdout)
+    with run_plantri(part.plantri_args(), plantri) as run:
         # Read in a thread of its own: read in turn with the counting, plantri would wait on
-        # a full pipe while a chunk is counted (the task took plantri's time plus ours).
+        # a full pipe while a chunk is counted (the task would take plantri's time plus ours).
         for records in prefetch(
-            read_planar_code(process.stdout, f"plantri {part.name}", chunk_size, raw=True)
+            read_planar_code(run.stdout, f"plantri {part.name}", chunk_size, raw=True)
         ):
             tallied = tally_batch(records)
             grains += len(tallied)
@@ -134,11 +105,11 @@ def count_part(part: Part, chunk_size: int, plantri: str | None = None) -> PartR
             if publish is not None and time.monotonic() - published >= 1.0:
                 publish({"part": part.name, "grains": grains})
                 published = time.monotonic()
-        stderr = process.stderr.read()
-    reported = _reported_count(stderr, command, process.returncode)
+    reported = run.written
     if reported != grains:
         raise CensusError(
-            f"{' '.join(command)}: plantri reported {reported} triangulations, {grains} were read"
+            f"{' '.join(run.command)}: plantri reported {reported} triangulations, "
+            f"{grains} were read"
         )
     return PartResult(part, merge_tallies(frames), grains, reported, time.perf_counter() - start)
 
@@ -152,27 +123,6 @@ def _progress_publisher() -> Callable[[dict], None] | None:
     except (ImportError, ValueError):
         return None
     return lambda message: worker.log_event(PROGRESS_TOPIC, message)
-
-
-def plantri_count(n: int, check: str, plantri: str | None = None) -> int:
-    """plantri's own count of the triangulations with ``n`` vertices of a :data:`CHECKS` kind."""
-    flags = CHECKS[check]
-    if check != "all" and n < 6:
-        # plantri takes -c4 and -m4 only from n = 6; there are none below: a vertex degree sum
-        # of 6n - 12 >= 4n needs n >= 6.
-        return 0
-    command = [plantri_command(plantri), *flags, str(n)]
-    done = subprocess.run(command, capture_output=True, check=False)
-    return _reported_count(done.stderr, command, done.returncode)
-
-
-def plantri_version(plantri: str | None = None) -> str:
-    """plantri's version line, e.g. ``5.8 - March 4, 2026`` (from its usage message)."""
-    done = subprocess.run(
-        [plantri_command(plantri), "-help"], capture_output=True, check=False, text=True
-    )
-    found = re.search(r"[Pp]lantri version (.+)", done.stdout + done.stderr)
-    return found.group(1).strip() if found else "unknown"
 
 
 @dataclass
@@ -607,11 +557,11 @@ def dask_client(scheduler: str | None = None, workers: int | None = None) -> Ite
         with Client(scheduler) as client:
             yield client
         return
-    from grainclass.parallel import interrupts_blocked
+    from grainclass.parallel import available_cpus, interrupts_blocked
 
     # A worker restarted after a loss is not news here. silence_logs holds Dask's logs to errors
-    # while the cluster runs, not while it closes: a census stopped by Ctrl-C logged its links
-    # to the workers closing, with tracebacks. They are held so until the cluster is gone.
+    # while the cluster runs, not while it closes, when a census stopped by Ctrl-C would log its
+    # links to the workers closing, with tracebacks: they are held so until the cluster is gone.
     logs = logging.getLogger("distributed")
     level = logs.level
     logs.setLevel(logging.ERROR)
@@ -623,7 +573,7 @@ def dask_client(scheduler: str | None = None, workers: int | None = None) -> Ite
             with interrupts_blocked():
                 cluster = stack.enter_context(
                     LocalCluster(
-                        n_workers=workers or os.cpu_count() or 1,
+                        n_workers=workers or available_cpus(),
                         threads_per_worker=1,
                         processes=True,
                         # No dashboard (bokeh is not a dependency); the scheduler's small HTTP
@@ -641,8 +591,8 @@ def dask_client(scheduler: str | None = None, workers: int | None = None) -> Ite
 
 def dask_setup(worker: object) -> None:
     """Run by each worker process of :func:`dask_client`'s local cluster once it has started:
-    Ctrl-C ends it at once and quietly (``parallel.end_quietly_on_interrupt``), where each
-    worker printed a page of traceback."""
+    Ctrl-C ends it at once and quietly (``parallel.end_quietly_on_interrupt``), not with a page
+    of traceback from each worker."""
     from grainclass.parallel import end_quietly_on_interrupt
 
     end_quietly_on_interrupt()

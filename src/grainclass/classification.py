@@ -445,7 +445,7 @@ def _table(batch: GrainBatch, out: _Classified, types: _Types) -> pa.Table:
         schema.SPLIT_K: numbers(split_k, pa.int32(), is_flag),
         schema.SPLIT_M: numbers(n_faces - 4 - split_k, pa.int32(), is_flag),
         schema.BELTS4: numbers(belts[:, 1], pa.int32(), is_flag),
-        schema.PENALTY: numbers(n_faces * belts[:, 2], pa.int64(), is_flag),
+        schema.PENALTY: numbers(belts[:, 2], pa.int64(), is_flag),
         schema.WEINBERG: _weinberg_strings(types),
         schema.SYMMETRY: numbers(types.symmetry, pa.int32(), with_type),
         schema.CHIRALITY: numbers(types.chirality, pa.int8(), with_type),

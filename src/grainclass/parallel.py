@@ -30,7 +30,17 @@ from grainclass.errors import NoWorkersWarning
 T = TypeVar("T")
 R = TypeVar("R")
 
-_jobs = os.cpu_count() or 1
+
+def available_cpus() -> int:
+    """The CPUs this process may run on: its affinity mask where the system keeps one (a
+    container, ``taskset`` or a batch scheduler may allow fewer than the machine has), else
+    every CPU of the machine. Every default count of threads and workers comes from here."""
+    if hasattr(os, "sched_getaffinity"):
+        return len(os.sched_getaffinity(0)) or 1
+    return os.cpu_count() or 1
+
+
+_jobs = available_cpus()
 _pools: dict[str, ThreadPoolExecutor] = {}
 _in_batch_worker = threading.local()
 _running = 0  # tasks of the thread pools under way
@@ -131,8 +141,8 @@ def map_ordered(function: Callable[[T], R], items: Iterable[T]) -> Iterator[R]:
 def interrupts_blocked() -> Iterator[None]:
     """SIGINT blocked in this thread while the body starts worker processes, which keep it
     blocked (the mask outlives exec) until they take it up (:func:`end_quietly_on_interrupt`).
-    Ctrl-C reaches every process of the terminal's group, and workers interrupted mid-import
-    printed pages of tracebacks (and once left a pool hung). Held back, not lost: a Ctrl-C in
+    Ctrl-C reaches every process of the terminal's group, and a worker interrupted mid-import
+    prints pages of tracebacks and can leave its pool hung. Held back, not lost: a Ctrl-C in
     the body reaches this process as the body ends."""
     if not hasattr(signal, "pthread_sigmask"):  # Windows
         yield
@@ -154,7 +164,7 @@ class _WorkerPool(ProcessPoolExecutor):
     """Each submission (map's too) within :func:`interrupts_blocked`: a submission may start a
     worker, so every worker starts with Ctrl-C held back, whichever call starts it. Shut down
     one caller at a time: an interrupted command's :func:`stop_worker_pools` and the pool's own
-    user may both shut it down, and two at once closed its result queue twice (Python 3.11: Bad
+    user may both shut it down, and two at once close its result queue twice (Python 3.11: Bad
     file descriptor)."""
 
     def __init__(self, *args, **kwargs) -> None:
@@ -181,8 +191,8 @@ _worker_pools: weakref.WeakSet[ProcessPoolExecutor] = weakref.WeakSet()
 
 def worker_pool(workers: int) -> Executor:
     """Spawned worker processes (not forked: the parent may be running compiled kernels in
-    threads) that end at once and quietly on Ctrl-C, where ignoring it kept their parent
-    waiting for their tasks; an interrupted command stops the pools with
+    threads) that end at once and quietly on Ctrl-C (ignoring it would keep their parent
+    waiting for their tasks); an interrupted command stops the pools with
     :func:`stop_worker_pools`. Where no worker can start, an executor that runs each task in
     this process as it is submitted, with a :class:`NoWorkersWarning`."""
     from concurrent.futures.process import BrokenProcessPool
@@ -220,8 +230,8 @@ class _InProcess(Executor):
 
 def _in_process(failure: Exception) -> Executor:
     """Where worker processes cannot start, the work is done here, more slowly, and the run
-    says so: it failed with a traceback (a broken pool), as an error of the output file, or
-    silently, as if its output pipe had closed (the resource tracker's Broken pipe)."""
+    says so, rather than failing with a traceback (a broken pool), as an error of the output
+    file, or silently, as if its output pipe had closed (the resource tracker's Broken pipe)."""
     why = failure.strerror if isinstance(failure, OSError) else None
     warnings.warn(
         f"worker processes could not start ({why or 'one ended as it started'}): "

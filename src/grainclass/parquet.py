@@ -82,11 +82,11 @@ class GrainTableWriter:
 
     def _open(self, schema: pa.Schema) -> None:
         self._schema = schema
-        # Grain ids are unique: a dictionary for them only grows until Parquet gives it up,
-        # which cost 40% of the writing (all other columns keep theirs).
+        # Grain ids are unique: a dictionary for them only grows until Parquet gives it up, at
+        # a large cost to the writing (all other columns keep theirs).
         dictionary = [name for name in schema.names if name != GRAIN_ID]
         # Nor is a row group's least and greatest id, message, forest or Weinberg vector of use
-        # to a query; computing them took 7-8% of the writing at n = 16.
+        # to a query, and computing them slows the writing.
         statistics = [name for name in schema.names if name not in _FREE_TEXT]
         self._writer = pq.ParquetWriter(
             self._sink,
@@ -120,9 +120,9 @@ def iter_grain_tables(path: str, columns: list[str]) -> Iterator[pa.Table]:
     from grainclass.readers import done_reading, read_once
 
     # Bytes that Python holds are released by Arrow under the GIL, and Arrow's decoding threads
-    # may release the last of them just after a row group is handed over: had the process
-    # ended then (an error at the first row group), such a thread found the interpreter
-    # finalizing and the process aborted. Arrow reads the file, or a copy of standard input,
+    # may release the last of them just after a row group is handed over: were the process to
+    # end then (an error at the first row group), such a thread would find the interpreter
+    # finalizing and the process would abort. Arrow reads the file, or a copy of standard input,
     # itself; only a file name that is not UTF-8, which Arrow cannot open, is read by Python,
     # and then decoded in this thread.
     threads = True

@@ -1,10 +1,9 @@
 """Reading from pipes: a larger pipe buffer, and gathered reads instead of one per write.
 
 A fast writer such as plantri writes 4 kB at a time, and a reader that keeps up wakes for every
-write: a system call and a wake-up on each side per 4 kB (`plantri 16 | grainclass summarize -`
-spent 2.9-3.0 s of system time so, 1.3-1.9 s with gathered reads). A piped standard input is
-read ahead from the start of a command (:class:`ReadAhead`), so that the writer need not wait
-while the libraries load.
+write: a system call and a wake-up on each side per 4 kB, which gathered reads save (see
+docs/performance.md). A piped standard input is read ahead from the start of a command
+(:class:`ReadAhead`), so that the writer need not wait while the libraries load.
 """
 
 from __future__ import annotations
@@ -38,9 +37,8 @@ def is_pipe(stream: BinaryIO) -> bool:
 def enlarge_pipe(stream: BinaryIO) -> int:
     """Give a pipe at least 1 MB of buffer (Linux's default is 64 kB, and 1 MB the most an
     unprivileged process may ask for): a writer as fast as plantri then waits less often for the
-    reader, and both make fewer system calls (a quarter of n = 16 through summarize's counting:
-    6.0 s, with 1 MB 5.1-5.3 s). Returns the pipe's buffer size, as enlarged or, if refused, as
-    it was; 0 for anything that is not a pipe, or where the size cannot be known."""
+    reader, and both make fewer system calls. Returns the pipe's buffer size, as enlarged or, if
+    refused, as it was; 0 for anything that is not a pipe, or where the size cannot be known."""
     if not is_pipe(stream):
         return 0
     try:
@@ -79,10 +77,9 @@ class ReadAhead(io.RawIOBase):
     """A pipe read by a background thread from the moment a command starts, up to AHEAD_BYTES
     ahead of its use, so that the writer (plantri) goes on while grainclass starts up instead of
     waiting on a full pipe: start-up then costs the pipe no time, as long as grainclass reads
-    faster than the writer writes (a quarter of n = 16 through summarize: 6.0-6.4 s, so
-    5.4-5.7 s). Reads that find the pipe nearly empty let the writer's output gather (see
-    GATHER_SECONDS); the stream has no fileno(), so that its readers do not gather again. A
-    read error is raised to the reader once what came before it is read.
+    faster than the writer writes. Reads that find the pipe nearly empty let the writer's output
+    gather (see GATHER_SECONDS); the stream has no fileno(), so that its readers do not gather
+    again. A read error is raised to the reader once what came before it is read.
 
     ``source`` is an open pipe's file descriptor, or the path of a FIFO (a process
     substitution's ``/dev/fd/63`` too), which the thread opens, and so may wait for a writer

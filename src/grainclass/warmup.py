@@ -9,7 +9,7 @@ classification: each loads from numba's cache what the other has already written
 two meet in the middle.
 
 A grain that the fast path leaves needs the general validation, and one of more than 64 faces
-the general classification too: some 4 s of compiling each, after the fast path's 3. The run
+the general classification too: each takes longer to compile than the fast path. The run
 tells the helper at its first batch which of them it will need (``_plan``), and the work is
 shared anew: with a large grain the helper compiles the general classification after the walk;
 with grains the fast path surely leaves (their lists do not hold the 6n - 12 entries of a simple

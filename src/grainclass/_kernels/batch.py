@@ -160,7 +160,7 @@ def _classify_batch(
     Layout: grain g has faces ``face_offsets[g]:face_offsets[g+1]``; face f has the local
     neighbour indices ``neighbors[nbr_offsets[f]:nbr_offsets[f+1]]``. ``err`` is int64[G, 3]
     (code, a, b), ``consistent`` marks grains whose lists were already oriented one way,
-    ``belts`` int64[G, 3] (split_k, count, weight), ``tree_bytes`` holds 3n bytes per grain from
+    ``belts`` int64[G, 3] (split_k, count, penalty), ``tree_bytes`` holds 3n bytes per grain from
     ``tree_offsets[g]``. Family is -1 for grains that are not ok, depth 0 for fundamental ones.
     Grains with more than ``max_small`` faces skip the fast path. Without ``strings`` the
     truncation forests are only counted (trees_count; depth and tree bytes are left alone).
@@ -185,10 +185,9 @@ def _classify_batch(
         if fast:
             status[g] = OK
             consistent[g] = True
-            # _classify_ok_small written out: inlined, the arrays handed to it were counted up
-            # and down at every grain (the kernel took 0.45-0.47 us a grain at n = 16, 0.55-0.57
-            # with forest strings, against 0.29-0.30 and 0.38-0.40), and as a call of its own,
-            # without counting, as fast, it took 0.5 s longer to compile at a first run.
+            # _classify_ok_small written out: inlined, the arrays handed to it are counted up
+            # and down at every grain, and a call of its own, as fast, compiles longer at a
+            # first run (see docs/performance.md).
             alive = _classify_small(
                 g, n, triangular, adj, link, removed_round, family, fundamental, belts
             )
@@ -279,7 +278,8 @@ def _classify_general_batch(
     """The general path for the ok grains ``grains[first:last]`` of a CSR batch, which
     :func:`_validate_pending_batch` left PENDING, classified without bitsets (outputs as in
     :func:`_classify_batch`): those of more than 64 faces, and every grain when the tests
-    compare the two paths. Validating them again took its compilation 1-2 s more."""
+    compare the two paths. They are not validated again: that would lengthen its
+    compilation."""
     result = np.empty(5, np.int64)
     for i in range(first, last):
         g = grains[i]
@@ -299,9 +299,9 @@ def _classify_general_batch(
 def _small_record(buf, p, end):
     """The vertex count n of the planar_code record at ``buf[p:end]`` if the fast path can
     validate it in place (:func:`small._validate_record`): a triangulation's worth of 1-byte
-    entries, n + (6n - 12) + n zeros, with at most 64 vertices; else 0. (Returning the record's
-    n, verdict and bitset from one helper, which read the record, left the census kernel a
-    tenth slower.)"""
+    entries, n + (6n - 12) + n zeros, with at most 64 vertices; else 0. It returns n alone:
+    one helper that also read the record for its verdict and bitset slows the census kernel.
+    """
     n = int(buf[p])  # a record of 2-byte entries starts with a 0
     return n if 0 < n <= MAX_BITSET_FACES and end - p == 1 + 7 * n - 12 else 0
 
@@ -339,9 +339,9 @@ def _tally_records(buf, starts):
     group, ``census_key`` (family, class, faces, round, split; all ok). Returns the hash table
     of keys (``EMPTY`` where free), its sums per slot (grains, triangular faces) and the
     records left for the general path (2-byte entries among them). Nothing per grain is
-    written, so nothing is read back: grouping per-grain codes with numpy took ~100 ns a grain
-    at n = 16 (a third of the kernel's time), its passes over the batch finding the arrays out
-    of cache and their fresh pages to fault in.
+    written, so nothing is read back: grouping per-grain codes with numpy costs a large share
+    of the kernel's time, its passes over the batch finding the arrays out of cache and their
+    fresh pages to fault in.
     """
     adj, following, link, removed_round, _ = _work()
     stamp = 0

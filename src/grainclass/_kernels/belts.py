@@ -10,6 +10,21 @@ import numpy as np
 from grainclass._numba import njit
 
 
+@njit(inline="always")
+def split_type(n, side):
+    """The split type k of a 4-belt of a triangulation with n vertices that leaves ``side`` of
+    the other n - 4 vertices on one of its sides: the smaller side's count (split k:m, m =
+    n - 4 - k)."""
+    return min(side, n - 4 - side)
+
+
+@njit(inline="always")
+def belt_penalty(n, k):
+    """A 4-belt's share of the penalty: n k (n - 4 - k) for split type k; a grain's penalty is
+    the sum over its 4-belts."""
+    return n * k * (n - 4 - k)
+
+
 @njit
 def _side_size(n, off, nb, on_belt):
     """Vertices in the component of the graph minus the belt that holds the first free vertex."""
@@ -35,14 +50,15 @@ def _side_size(n, off, nb, on_belt):
 
 @njit
 def _four_belts(n, off, nb, adj, out):
-    """Split type, number of 4-belts and penalty sum of a flag triangulation.
+    """Split type, number of 4-belts and penalty of a flag triangulation.
 
-    Writes ``out = (split_k, belts, sum over belts of k * (n - k - 4))``; the penalty is n times
-    the sum. In a triangulation a chordless 4-cycle always leaves two non-empty sides.
+    Writes ``out = (split_k, belts, penalty)``: the largest :func:`split_type` of its belts,
+    their number and the sum of their :func:`belt_penalty`. In a triangulation a chordless
+    4-cycle always leaves two non-empty sides.
     """
     on_belt = np.zeros(n, np.bool_)
     common = np.empty(n, np.int32)
-    split_k, belts, weight = 0, 0, 0
+    split_k, belts, penalty = 0, 0, 0
     for a in range(n):
         for c in range(a + 1, n):
             if adj[a, c]:
@@ -63,8 +79,8 @@ def _four_belts(n, off, nb, adj, out):
                     on_belt[a] = on_belt[b] = on_belt[c] = on_belt[d] = True
                     side = _side_size(n, off, nb, on_belt)
                     on_belt[a] = on_belt[b] = on_belt[c] = on_belt[d] = False
-                    k = min(side, n - 4 - side)
+                    k = split_type(n, side)
                     belts += 1
-                    weight += k * (n - 4 - k)
+                    penalty += belt_penalty(n, k)
                     split_k = max(split_k, k)
-    out[0], out[1], out[2] = split_k, belts, weight
+    out[0], out[1], out[2] = split_k, belts, penalty

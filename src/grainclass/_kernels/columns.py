@@ -145,8 +145,8 @@ def _code_strings(codes, code_offsets, ok):
     """Arrow string buffers for Weinberg codes written as ``(1,2,3,...)``; empty when not ok.
 
     Codes whose labels all have one or two digits (those of grains up to 51 faces) are written
-    without a loop per digit, whose varying length a branch predictor misses: that loop took
-    nearly half the time of the Weinberg walks themselves.
+    without a loop per digit, whose varying length a branch predictor misses: that loop costs
+    nearly as much as the Weinberg walks themselves.
     """
     n = ok.shape[0]
     offsets = np.zeros(n + 1, np.int32)

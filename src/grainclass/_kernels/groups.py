@@ -34,8 +34,8 @@ def doubled(table, values):
         if table[s] != EMPTY:
             t = slot(bigger, table[s])
             bigger[t] = table[s]
-            # Element by element: a row assignment (moved[t] = values[s]) compiled numba's
-            # broadcasting, with its shape-mismatch error, 1.4 s of a first run.
+            # Element by element: a row assignment (moved[t] = values[s]) compiles numba's
+            # broadcasting, with its shape-mismatch error, into a first run.
             for c in range(values.shape[1]):
                 moved[t, c] = values[s, c]
     return bigger, moved

@@ -45,8 +45,8 @@ def header_length(buf, p):
 @njit(inline="always")
 def _zero_count(buf, a, b):
     """The number of 0 bytes among ``buf[a:b]``: a plain loop, which LLVM vectorizes, many bytes
-    a step (a record at n = 16 is framed in 22-36 ns; counting eight bytes at a time in uint64
-    words took 31-50, and needed the buffer on an 8-byte boundary)."""
+    a step; it is faster than counting eight bytes at a time in uint64 words, which would also
+    need the buffer on an 8-byte boundary."""
     zeros = 0
     for i in range(a, b):
         zeros += buf[at(i)] == 0
@@ -63,7 +63,7 @@ def _scan(buf, big_endian, max_records, starts):
     The scan stops before a header (:func:`header_length`): the caller reads it.
     """
     size = buf.shape[0]
-    p = np.int64(0)  # not the literal 0, for which numba compiled header_length a second time
+    p = np.int64(0)  # not the literal 0, for which numba would compile header_length again
     records = vertices = entries = 0
     starts[0] = 0
     while p < size and records < max_records:

@@ -9,6 +9,7 @@ makes :func:`_validate_small` say no, and the general path of ``validate.py``,
 
 import numpy as np
 
+from grainclass._kernels.belts import belt_penalty, split_type
 from grainclass._kernels.bits import ONE, ZERO, bit, full, lowest, popcount
 from grainclass._numba import at, njit, njit_leaf
 
@@ -167,11 +168,11 @@ def _validate_record(buf, p, end, n, adj, following, stamp):
     zeros, the last byte one of them (the caller checks). Returns ``(ok, triangular)`` and
     fills ``adj`` and ``following`` as that does.
 
-    One pass over the bytes, without a branch: a loop per list mispredicted at each list's end
-    (the census kernel took 0.35-0.37 us a grain at n = 16, 0.29-0.30 so). Each byte b ends the
-    corner (v, prev, b) of face v, or at a 0 the list's last corner (v, prev, first); the bytes
-    keep their 1-based faces, so that a list's first corner, (v, 0, b), is written in column 0,
-    of no face, and never closes. v's bitset is stored at every byte, whole at its 0. The checks
+    One pass over the bytes, without a branch: a loop per list would be mispredicted at each
+    list's end (see docs/performance.md). Each byte b ends the corner (v, prev, b) of face v,
+    or at a 0 the list's last corner (v, prev, first); the bytes keep their 1-based faces, so
+    that a list's first corner, (v, 0, b), is written in column 0, of no face, and never
+    closes. v's bitset is stored at every byte, whole at its 0. The checks
     of whole lists (repeats, v in its own list, degree 3) are made on the bitsets once every
     list is read, the faces' range by the largest byte, in a loop of its own that LLVM
     vectorizes.
@@ -217,8 +218,7 @@ def _reduce_small(n, adj, cubic, removed_round, link):
 
     ``link[v]`` is the bitset of v's three neighbours when it went, ``removed_round[v]`` its
     round (0 if it stayed). Only the neighbours of the vertices a round removes can be of
-    degree 3 in the next, so only they are looked at again, not every vertex left (validation
-    and reduction of a planar_code record at n = 16: 313-321 -> 303-312 ns).
+    degree 3 in the next, so only they are looked at again, not every vertex left.
     """
     alive = full(n)
     n_alive = n
@@ -264,10 +264,10 @@ def _has_empty_triangle_small(adj, alive):
 @njit_leaf
 def _four_belts_small(n, adj, out):
     """As ``belts._four_belts``: chordless 4-cycles a-b-c-d, each found once from its smallest
-    vertex a; writes ``out = (split_k, belts, sum of k * (n - k - 4))``.
+    vertex a; writes ``out = (split_k, belts, penalty)``.
     """
     everything = full(n)
-    split_k, belts, weight = 0, 0, 0
+    split_k, belts, penalty = 0, 0, 0
     for a in range(n):
         above_a = everything & ~full(a + 1)
         for c in range(a + 1, n):
@@ -284,8 +284,8 @@ def _four_belts_small(n, adj, out):
                     belt = bit(a) | bit(b) | bit(c) | bit(d)
                     rest = everything & ~belt
                     side = popcount(_component(adj, bit(lowest(rest)), rest))
-                    k = min(side, n - 4 - side)
+                    k = split_type(n, side)
                     belts += 1
-                    weight += k * (n - 4 - k)
+                    penalty += belt_penalty(n, k)
                     split_k = max(split_k, k)
-    out[0], out[1], out[2] = split_k, belts, weight
+    out[0], out[1], out[2] = split_k, belts, penalty

@@ -73,8 +73,8 @@ def _check_lists(n, off, nb, err):
     for v in range(n):
         for i in range(off[v], off[v + 1]):
             # int64 like v, as everywhere _count is called: each mix of scalar types would be
-            # compiled again (here and in the other kernels of the general path, ~0.1-0.5 s
-            # each at a first run).
+            # compiled again (here and in the other kernels of the general path), lengthening
+            # a first run.
             x = np.int64(nb[i])
             if _count(off, nb, v, x) != _count(off, nb, x, v):
                 err[0], err[1], err[2] = E_ASYMMETRIC, v, x

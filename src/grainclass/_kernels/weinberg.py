@@ -16,8 +16,8 @@ edges, counter-clockwise, are its darts a -> b, b -> c and c -> a (c = sigma(a, 
 edge back from the corner across is the reverse dart b -> a. Labels, and what a walk has used,
 are kept per dart in one table. Both tables are indexed by ``a << shift | b``, rows a power of
 two wide (at least n), not by ``a * n + b``: a walk's every step computes three such indices
-from the face it has just loaded, and a multiplication's latency held up the next load (the
-Weinberg kernel took 6-11% longer at n = 16; the tables are at most four times n * n).
+from the face it has just loaded, and a multiplication's latency would hold up the next load
+(the tables are at most four times n * n; see docs/performance.md).
 
 Orientation +1 turns right with the faces seen from outside, taking the input's neighbour lists
 as counter-clockwise seen from outside (the orientation of face 0's list for text input).
@@ -100,14 +100,12 @@ def _weinberg(n, shift, rot, off, sigma, faces, best, gen, seen, code, walks, ke
     the other face of its first edge (q sides: q - 3 new labels, then 2). Two faces of a simple
     polytope share at most an edge, so those labels are new, and a smaller face writes its 1 or
     2 where a larger one writes a new label: only starts with the least (s, m, q) can give the
-    smallest code. That leaves 1.4 walks a grain at n = 16, where 1.0 give the smallest code:
+    smallest code. That leaves few walks a grain beyond the one that gives the smallest code:
     each is walked to its end or until it exceeds the best so far. The least s is found first,
-    so that only the edges of the smallest faces are looked at (a fifth of the time went on
-    weighing every start). Then every start is weighed and stored, its edge and turn packed in
-    one integer, and those of the least weight are moved down, without a branch. The weighing
-    took 110-120 ns a grain at n = 16 (plantri's part 0/17), a third of the first walk's time;
-    without its branches alone it was no faster, with one store a start instead of three the
-    kernel took 516-537 ns a grain against 569-599 (alternated runs).
+    so that only the edges of the smallest faces are looked at, not every start. Then every
+    start is weighed and stored, its edge and turn packed in one integer (one store a start,
+    not three), and those of the least weight are moved down, without a branch (see
+    docs/performance.md).
     """
     t = 2 * n - 4
     length = 3 * t + 1  # 2E + 1 with E = 3t/2
@@ -205,7 +203,7 @@ def _weinberg_batch(
 
     The rotation table is filled in one pass over the grain's darts without a branch: each
     list's first dart is marked beforehand with the list's last face, which comes before it
-    (a loop per list mispredicted at each list's end: 130 ns a grain at n = 16, 60-70 so).
+    (a loop per list would be mispredicted at each list's end).
     """
     stride = 1
     while stride < max_faces:
@@ -219,7 +217,7 @@ def _weinberg_batch(
     walks = np.empty(max(12 * max_faces - 24, 1), np.int64)
     keys = np.empty(max(12 * max_faces - 24, 1), np.int64)
     smallest_faces = np.empty(max(max_faces, 1), np.int64)
-    # Not the literal 0: numba compiled _weinberg once for a literal 0 and once for int64.
+    # Not the literal 0: numba would compile _weinberg once for a literal 0 and once for int64.
     gen = np.int64(0)
     for g in range(first, last):
         if not ok[g]:

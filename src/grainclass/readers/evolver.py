@@ -16,9 +16,7 @@ from __future__ import annotations
 
 import contextlib
 import functools
-import itertools
 import math
-import os
 import re
 from collections import defaultdict
 from collections.abc import Iterable, Iterator
@@ -28,7 +26,9 @@ import numpy as np
 
 from grainclass.batch import GrainBatch, csr_from_lists, no_body_has, tri_state
 from grainclass.errors import InputError
-from grainclass.parallel import worker_pool
+from grainclass.geometry import loop_arrays, polytope_measures, unit_normals
+from grainclass.parallel import available_cpus, worker_pool
+from grainclass.readers.sniffing import SNIFF_BYTES, not_grains
 
 # A datafile's sections, and what one numbered line of each is called in messages.
 SECTIONS = {
@@ -257,9 +257,9 @@ def _grain(data: _Datafile, body: int, facet_bodies: dict[int, list[int]], marke
         return k
 
     row = _vertex_rows(facets)
-    polygons = [[row[t] for t, _, _ in darts] for darts in facets]
+    corners, loop_offsets = loop_arrays([[row[t] for t, _, _ in darts] for darts in facets])
     position = _positions(data, facets, row)
-    normal = None if marked else _unit_normals(position, polygons)
+    normal = None if marked else unit_normals(position, corners, loop_offsets)
     for e, (a, b) in on_edge.items():
         if data.edges[e][3] or other[a] != other[b]:
             continue
@@ -289,7 +289,10 @@ def _grain(data: _Datafile, body: int, facet_bodies: dict[int, list[int]], marke
                 a, b = on_edge[e]
                 across[(face[k], e)] = face[b] if a == k else face[a]
     neighbours = [_walk_boundary(f, leaving[f], across, degree) for f in range(len(roots))]
-    volume, area = _measure(position, polygons)
+    volumes, areas = polytope_measures(
+        position, corners, loop_offsets, np.zeros(len(facets), np.int64), 1
+    )
+    volume, area = float(volumes[0]), float(areas[0])
     # Cut by the sample boundary: facets shared with no other body, in a non-periodic foam. A
     # lone body (one grain per file) cannot tell.
     boundary = None
@@ -394,26 +397,6 @@ def _undefined_vertex(facets: list[list[tuple[int, int, int]]], vertex: int) -> 
     return _Undefined("vertices", vertex, f"edge {edge}")
 
 
-def _unit_normals(position: np.ndarray, polygons: list[list[int]]) -> np.ndarray:
-    """Newell's normal of every polygon (rows of ``position``), of length 1 (0 if degenerate)."""
-    starts = np.array([k for k, p in enumerate(polygons) for _ in p])
-    a = np.array([v for p in polygons for v in p])
-    b = np.array([v for p in polygons for v in p[1:] + p[:1]])
-    total = np.zeros((len(polygons), 3))
-    np.add.at(total, starts, np.cross(position[a], position[b]))
-    length = np.linalg.norm(total, axis=1, keepdims=True)
-    return np.divide(total, length, out=np.zeros_like(total), where=length > 0)
-
-
-def _measure(position: np.ndarray, polygons: list[list[int]]) -> tuple[float, float]:
-    """Signed volume (divergence theorem) and area of a closed body, polygons fanned."""
-    fans = np.array([(p[0], b, c) for p in polygons for b, c in itertools.pairwise(p[1:])])
-    a, b, c = position[fans[:, 0]], position[fans[:, 1]], position[fans[:, 2]]
-    area = 0.5 * float(np.linalg.norm(np.cross(b - a, c - a), axis=1).sum())
-    volume = float(np.einsum("ij,ij->i", a, np.cross(b, c)).sum()) / 6.0
-    return volume, area
-
-
 def read_evolver(
     paths: Iterable[str],
     chunk_size: int,
@@ -440,9 +423,10 @@ def read_evolver(
     grains: list[_Grain] = []
     with contextlib.ExitStack() as stack:
         per_file: Iterable[list[_Grain]] = map(read, paths)
-        if len(paths) >= PARALLEL_FILES and (os.cpu_count() or 1) > 1:
+        cpus = available_cpus()
+        if len(paths) >= PARALLEL_FILES and cpus > 1:
             # Parsing is pure Python: a folder of dumps is read by one process per core.
-            pool = worker_pool(os.cpu_count() or 1)
+            pool = worker_pool(cpus)
             stack.callback(pool.shutdown, wait=True, cancel_futures=True)
             per_file = pool.map(read, paths, chunksize=16)
         for file_grains in per_file:
@@ -462,8 +446,6 @@ _NO_BODIES = (
 
 def _read_file(path: str, triple_edges: tuple[str, str]) -> list[_Grain]:
     """The grains of one datafile (a malformed file is one bad grain, not a failed run)."""
-    from grainclass.readers import SNIFF_BYTES, not_grains  # a package that imports this module
-
     stem = path.rsplit("/", 1)[-1].removesuffix(".fe")
     try:
         with open(path, "rb") as handle:

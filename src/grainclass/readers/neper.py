@@ -49,6 +49,7 @@ import numpy as np
 
 from grainclass.batch import GrainBatch
 from grainclass.errors import InputError
+from grainclass.geometry import loop_arrays, polytope_measures
 from grainclass.readers.loops import batch_from_loops
 
 _BOM = b"\xef\xbb\xbf"
@@ -273,34 +274,15 @@ def _check_face(
 def _measures(
     coords: np.ndarray, grain_loops: list[list[list[int]] | None]
 ) -> tuple[np.ndarray, np.ndarray]:
-    """Volume and area of each grain whose loops are given (NaN otherwise), all at once.
-
-    Each face is fanned into triangles from its first vertex; the volume is the divergence
-    theorem over the triangles, taken relative to the grain's first vertex (exact for a closed
-    surface, and better conditioned far from the origin).
-    """
-    grain, origin, a, b, c = [], [], [], [], []
-    for k, loops in enumerate(grain_loops):
-        if not loops:
-            continue
-        for loop in loops:
-            m = len(loop) - 2
-            grain += [k] * m
-            origin += [loops[0][0]] * m
-            a += [loop[0]] * m
-            b += loop[1:-1]
-            c += loop[2:]
-    n = len(grain_loops)
-    if not grain:
-        return np.full(n, np.nan), np.full(n, np.nan)
-    o = coords[origin]
-    pa, pb, pc = coords[a] - o, coords[b] - o, coords[c] - o
-    cross = np.cross(pb - pa, pc - pa)
-    index = np.asarray(grain)
-    area = 0.5 * np.bincount(index, np.linalg.norm(cross, axis=1), minlength=n)
-    volume = np.abs(np.bincount(index, np.einsum("ij,ij->i", pa, cross), minlength=n)) / 6.0
-    known = np.asarray([bool(loops) for loops in grain_loops])
-    return np.where(known, volume, np.nan), np.where(known, area, np.nan)
+    """Volume and area of each grain whose loops are given (NaN otherwise), all at once
+    (:func:`grainclass.geometry.polytope_measures`)."""
+    loops = [loop for grain in grain_loops if grain for loop in grain]
+    grain = [k for k, grain in enumerate(grain_loops) if grain for _ in grain]
+    volume, area = polytope_measures(
+        coords, *loop_arrays(loops), np.asarray(grain, np.int64), len(grain_loops)
+    )
+    known = np.asarray([bool(loops) for loops in grain_loops], np.bool_)
+    return np.where(known, np.abs(volume), np.nan), np.where(known, area, np.nan)
 
 
 def read_neper(stream: BinaryIO, source: str, chunk_size: int) -> Iterator[GrainBatch]:
