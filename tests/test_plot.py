@@ -173,6 +173,8 @@ def test_evolution_steps_from_times(tmp_path):
         extra=["--times", "0.5,0.25"],
     )
     assert sorted(set(data.x)) == [0.25, 0.5]
+    _, single = _plot(tmp_path, "evolution", EXAMPLES / "polytopes.txt", extra=["--times", "7"])
+    assert single.series.tolist() == ["flag"]  # one step: no peak is marked
 
 
 @pytest.mark.parametrize("fmt", ["png", "svg", "pdf"])

@@ -212,8 +212,8 @@ def evolution(
 ) -> pd.DataFrame:
     """The percentage of ok grains in each series against the time step (figs. flag_over_time,
     triangles_over_time, combinatorial_parameters), one input a step, and, as series
-    ``Round (flag peak)``, the step where the fraction of flag grains peaks: the Round
-    microstructure."""
+    ``Round (flag peak)``, the step where the fraction of flag grains peaks (the Round
+    microstructure) when there are several steps."""
     rows = []
     flag = []
     for i in np.argsort(steps, kind="stable"):
@@ -224,8 +224,9 @@ def evolution(
             y = series_percent(dataset.summary, name)
             rows.append({"dataset": label, "series": name, "x": x, "y": y})
         flag.append((series_percent(dataset.summary, "flag"), x))
-    peak, at = max(flag, key=lambda item: item[0])  # the first step of the highest fraction
-    rows.append({"dataset": label, "series": ROUND_PEAK, "x": at, "y": peak})
+    if len(flag) > 1:  # a single step has no peak to speak of
+        peak, at = max(flag, key=lambda item: item[0])  # the first step of the highest
+        rows.append({"dataset": label, "series": ROUND_PEAK, "x": at, "y": peak})
     return _frame(rows, COLUMNS)
 
 
