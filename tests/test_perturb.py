@@ -8,14 +8,20 @@ derivation of the (2,2,2) polytope below, and from the plain-Python oracle
 from __future__ import annotations
 
 import math
+import subprocess
+import sys
 
 import numpy as np
+import pyarrow.parquet as pq
 import pytest
+from click.testing import CliRunner
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import reference
-from grainclass import GrainBatch, classify
+from conftest import EXAMPLES
+from grainclass import GrainBatch, classify, read_dataset
+from grainclass.cli import cli
 from grainclass.perturb import all_flips, perturb
 from strategies import mirror, relabel, triangulations
 
@@ -34,6 +40,27 @@ P222_ADMISSIBLE = {(2, 3), (2, 4), (2, 5), (3, 4), (4, 5)}
 TETRAHEDRON = [[1, 2, 3], [0, 3, 2], [0, 1, 3], [0, 2, 1]]
 
 
+def _line(grain_id: str, lists: list[list[int]], fields: str = "") -> str:
+    return f"{grain_id}\t{';'.join(' '.join(map(str, f)) for f in lists)}{fields}\n"
+
+
+def _run(*args, input: str | bytes | None = None):
+    return CliRunner().invoke(cli, [str(a) for a in args], input=input)
+
+
+def _ok(*args, input: str | bytes | None = None):
+    result = _run(*args, input=input)
+    assert result.exit_code == 0, result.output
+    return result
+
+
+def _classified(tmp_path, text: str) -> list[dict]:
+    source, out = tmp_path / "grains.txt", tmp_path / "grains.parquet"
+    source.write_text(text)
+    _ok("classify", source, "-o", out, "-q")
+    return pq.read_table(out).to_pylist()
+
+
 def _weinberg(lists: list[list[int]]) -> str:
     return classify(GrainBatch.from_lists([lists])).to_pylist()[0]["weinberg"]
 
@@ -48,6 +75,11 @@ def _lists(batch: GrainBatch, g: int = 0) -> list[list[int]]:
         batch.neighbors[batch.nbr_offsets[f] : batch.nbr_offsets[f + 1]].tolist()
         for f in range(f0, f1)
     ]
+
+
+def _ids(batch: GrainBatch) -> list[str]:
+    ids = batch.grain_id
+    return [str(i) for i in (ids.to_pylist() if hasattr(ids, "to_pylist") else ids)]
 
 
 def _grains(batch: GrainBatch) -> list[list[list[int]]]:
@@ -67,6 +99,35 @@ def test_the_hand_derived_grain_is_the_222_polytope_and_the_oracle_agrees():
     assert reference.flip(CUBE, 0, 1) == reference.oriented_faces(P222)
     assert len(reference.admissible_flips(CUBE)) == 12
     assert set(reference.admissible_flips(P222)) == P222_ADMISSIBLE
+
+
+def test_every_flip_of_the_cube_gives_the_222_polytope(tmp_path):
+    """The paper: "The flip of any edge of the cube gives the second polytope"."""
+    flips = _ok("perturb", "-", "--all-flips", input=_line("cube", CUBE)).stdout
+    rows = _classified(tmp_path, flips)
+    assert len(rows) == 12
+    assert {row["flipped_edge"] for row in rows} == {f"{a}-{b}" for a, b in _edges(CUBE)}
+    assert all(row["status"] == "ok" and row["from_grain"] == "cube" for row in rows)
+    assert {tuple(row["p_vector"]) for row in rows} == {(2, 2, 2)}
+    assert {row["weinberg"] for row in rows} == {_weinberg(P222)}
+
+
+def test_of_the_222_polytope_four_flips_give_it_back_one_the_cube_seven_are_not_admissible(
+    tmp_path,
+):
+    """The paper: "the flip of any of four edges does not change the polytope, the flip of one
+    edge gives the cube, and the remaining seven edges are non-admissible"."""
+    flips = _ok("perturb", "-", "--all-flips", input=_line("p222", P222)).stdout
+    rows = _classified(tmp_path, flips)
+    flipped = {tuple(map(int, row["flipped_edge"].split("-"))): row for row in rows}
+    assert set(flipped) == P222_ADMISSIBLE
+    assert len(_edges(P222)) - len(flipped) == 7
+    cube = [edge for edge, row in flipped.items() if row["weinberg"] == _weinberg(CUBE)]
+    back = [edge for edge, row in flipped.items() if row["weinberg"] == _weinberg(P222)]
+    assert cube == [(2, 4)]
+    assert len(back) == 4
+    assert tuple(flipped[(2, 4)]["p_vector"]) == (0, 6)
+    assert flipped[(2, 4)]["new_edge"] == "0-1"
 
 
 # Flips against the oracle ------------------------------------------------------------------------
@@ -242,3 +303,148 @@ def test_grains_at_different_positions_draw_apart():
     for after in _grains(out):
         counts[_flipped_edge(P222, after)] += 1
     assert chi2_sf(chi2(list(counts.values())), 4) > 0.001
+
+
+# The command --------------------------------------------------------------------------------------
+
+
+@pytest.fixture
+def jobs_restored():
+    from grainclass.parallel import get_jobs, set_jobs
+
+    jobs = get_jobs()
+    yield
+    set_jobs(jobs)
+
+
+@pytest.fixture(scope="module")
+def voronoi_grains(tmp_path_factory):
+    """A Poisson-Voronoi tessellation of 2000 seeds: adjacency text with volumes and areas."""
+    path = tmp_path_factory.mktemp("perturb") / "pv.txt"
+    _ok("voronoi", 2000, "--seed", 3, "-o", path, "-q")
+    return path
+
+
+def test_a_seed_gives_the_same_bytes_whatever_the_jobs_and_the_chunk_size(
+    tmp_path, voronoi_grains, jobs_restored
+):
+    inputs = [voronoi_grains, EXAMPLES / "bad-grains.txt", EXAMPLES / "polytopes.txt"]
+    for name, paths in (("text", inputs), ("planar_code", [EXAMPLES / "plantri-10.pc"])):
+        outputs = []
+        for jobs, chunk_size in ((1, 1), (1, 100_000), (2, 1), (2, 100_000), (2, 7)):
+            out = tmp_path / f"{name}-{jobs}-{chunk_size}"
+            args = ["--flips", 3, "--seed", 7, "--jobs", jobs, "--chunk-size", chunk_size]
+            _ok("perturb", *paths, *args, "-o", out, "-q")
+            outputs.append(out.read_bytes())
+        assert all(output == outputs[0] for output in outputs[1:])
+        other = tmp_path / f"{name}-seed8"
+        _ok("perturb", *paths, "--flips", 3, "--seed", 8, "-o", other, "-q")
+        assert other.read_bytes() != outputs[0]
+
+
+def test_flips_0_writes_the_grains_unchanged(tmp_path, voronoi_grains):
+    for source in (voronoi_grains, EXAMPLES / "plantri-10.pc"):
+        out = tmp_path / source.name
+        _ok("perturb", source, "--flips", 0, "-o", out, "-q")
+        assert out.read_bytes() == source.read_bytes()
+
+
+def test_planar_code_in_planar_code_out(tmp_path):
+    source = EXAMPLES / "plantri-10.pc"
+    out = tmp_path / "out.pc"
+    _ok("perturb", source, "--flips", 2, "--seed", 1, "-o", out, "-q")
+    assert out.read_bytes().startswith(b">>planar_code<<")
+    before = next(read_dataset(str(source), chunk_size=10**6))
+    after = next(read_dataset(str(out), chunk_size=10**6))
+    assert len(after) == len(before) == 233
+    text = _ok("perturb", source, "--flips", 2, "--seed", 1).stdout
+    assert _grains(next(read_dataset(_write(tmp_path / "out.txt", text)))) == _grains(after)
+    rows = classify(after).to_pylist()
+    assert all(row["status"] == "ok" and row["n_faces"] == 10 for row in rows)
+
+
+def _write(path, text: str) -> str:
+    path.write_text(text)
+    return str(path)
+
+
+def test_ids_volumes_and_other_fields_are_kept(tmp_path):
+    text = _line("c1", CUBE, "\tvolume=0.125\tarea=1.5\tboundary=1\tphase=beta") + _line(
+        "c2", CUBE, "\tlabel=x"
+    )
+    out = _ok("perturb", "-", "--flips", 1, "--seed", 3, input=text).stdout
+    rows = _classified(tmp_path, out)
+    assert [r["grain_id"] for r in rows] == ["c1", "c2"]
+    assert [r["volume"] for r in rows] == [0.125, None]
+    assert [r["area"] for r in rows] == [1.5, None]
+    assert [r["boundary"] for r in rows] == [True, None]
+    assert [r["phase"] for r in rows] == ["beta", None]
+    assert [r["label"] for r in rows] == [None, "x"]
+    assert [tuple(r["p_vector"]) for r in rows] == [(2, 2, 2)] * 2
+
+
+def test_grains_that_are_not_ok_pass_through_unchanged(tmp_path):
+    source = EXAMPLES / "bad-grains.txt"
+    out = _write(tmp_path / "out.txt", _ok("perturb", source, "--flips", 2, "--seed", 5).stdout)
+    before = next(read_dataset(str(source)))
+    after = next(read_dataset(out))
+    assert _ids(after) == _ids(before)
+    status_before = classify(before).column("status").to_pylist()
+    assert classify(after).column("status").to_pylist() == status_before
+    parsed = [g for g in range(len(before)) if g not in before.parse_errors]
+    for g in parsed:
+        if status_before[g] != "ok":
+            assert _lists(after, g) == _lists(before, g)
+    assert sorted(after.parse_errors) == sorted(before.parse_errors)  # read as invalid again
+
+
+def test_grains_with_no_admissible_edge_left_are_kept_and_counted():
+    text = _line("tetrahedron", TETRAHEDRON) + _line("cube", CUBE)
+    for quiet in ([], ["-q"]):
+        result = _ok("perturb", "-", "--flips", 1, "--seed", 0, *quiet, input=text)
+        lines = result.stdout.splitlines()
+        assert lines[0] == _line("tetrahedron", TETRAHEDRON).rstrip("\n")
+        assert "1 had no admissible edge left" in result.stderr
+    result = _ok("perturb", "-", "--all-flips", input=text)
+    assert len(result.stdout.splitlines()) == 12
+    assert "1 with no admissible edge gave none" in result.stderr
+
+
+def test_the_seed_is_reported_when_not_given():
+    result = _ok("perturb", "-", "--flips", 1, input=_line("cube", CUBE))
+    seed = int(result.stderr.rsplit("seed ", 1)[1].split()[0])
+    again = _ok("perturb", "-", "--flips", 1, "--seed", seed, input=_line("cube", CUBE))
+    assert again.stdout == result.stdout
+
+
+def test_flips_or_all_flips_and_not_both():
+    for args in ([], ["--flips", "1", "--all-flips"], ["--all-flips", "--seed", "1"]):
+        assert _run("perturb", "-", *args, input=_line("cube", CUBE)).exit_code == 2
+
+
+def test_an_input_that_cannot_be_read_leaves_no_output(tmp_path):
+    out = tmp_path / "out.txt"
+    result = _run("perturb", tmp_path / "missing.txt", "--flips", 1, "-o", out)
+    assert result.exit_code == 1
+    assert not out.exists()
+
+
+def test_perturb_pipes_into_summarize(tmp_path, voronoi_grains):
+    command = [sys.executable, "-m", "grainclass"]
+    perturbed = subprocess.run(
+        [*command, "perturb", str(voronoi_grains), "--flips", "1", "--seed", "7"],
+        check=True,
+        capture_output=True,
+    )
+    piped = subprocess.run(
+        f"{' '.join(command)} perturb {voronoi_grains} --flips 1 --seed 7 -q"
+        f" | {' '.join(command)} summarize - --table round --format csv",
+        shell=True,
+        check=True,
+        capture_output=True,
+        text=True,
+    )
+    saved = _write(tmp_path / "perturbed.txt", perturbed.stdout.decode())
+    alone = _ok("summarize", saved, "--table", "round", "--format", "csv").stdout
+    assert piped.stdout == alone
+    assert "2000 grains: 2000 ok, 1 flip(s) each" in perturbed.stderr.decode()
