@@ -9,7 +9,9 @@ A grain is worked on in ``rows``: face v's neighbours at ``rows[start[v]:start[v
 in cyclic order, with room behind them for as many neighbours more as the flips can add. C and D
 are the neighbours before and after B in A's list whichever way the list turns, and D goes in
 between A and B in C's list, C in between A and B in D's: each list keeps its sense, so lists
-that turn one way still do after a flip.
+that turn one way still do after a flip. A grain of at most 64 faces also keeps each face's
+neighbours as a bitset, ``bits[v]``, so that whether C and D meet is one bit, not a search
+through C's list.
 
 Each grain's random choices come from its own stream, a SplitMix64 sequence started from the
 run's key and the grain's position in the input, so that they do not depend on how the input is
@@ -18,7 +20,7 @@ cut into batches or threads.
 
 import numpy as np
 
-from grainclass._kernels.bits import MAX_BITSET_FACES, ZERO
+from grainclass._kernels.bits import MAX_BITSET_FACES, ONE, ZERO, bit
 from grainclass._kernels.codes import INVALID, OK, PENDING
 from grainclass._kernels.small import CORNERS, _validate_small, next_stamp
 from grainclass._kernels.validate import _validate, grain_lists
@@ -92,18 +94,23 @@ def _check_pending_batch(
 
 
 @njit(inline="always")
-def _load(f0, n, nbr_offsets, lists, room, start, deg, rows):
-    """Grain (faces from ``f0``) into ``rows``, ``room`` free slots behind each list."""
-    base = nbr_offsets[f0]
+def _load(f0, n, nbr_offsets, lists, room, start, deg, rows, bits):
+    """Grain (faces from ``f0``) into ``rows``, ``room`` free slots behind each list, and,
+    for at most 64 faces, its neighbour bitsets into ``bits``."""
     p = 0
+    small = n <= MAX_BITSET_FACES
     for v in range(n):
         a, b = nbr_offsets[f0 + v], nbr_offsets[f0 + v + 1]
         start[v] = p
         deg[v] = b - a
+        row = ZERO
         for i in range(a, b):
-            rows[p + i - a] = lists[i]
+            x = lists[i]
+            rows[p + i - a] = x
+            row |= bit(x & 63)
+        if small:
+            bits[v] = row
         p += b - a + room
-    return base
 
 
 @njit(inline="always")
@@ -142,8 +149,16 @@ def _apexes(rows, s, d, i):
     return rows[s + (i - 1 if i > 0 else d - 1)], rows[s + (i + 1 if i + 1 < d else 0)]
 
 
+@njit(inline="always")
+def _meet(n, start, deg, rows, bits, c, d):
+    """Whether faces c and d meet: a bit of c's bitset, or (past 64 faces) d in c's list."""
+    if n <= MAX_BITSET_FACES:
+        return (bits[c] >> np.uint64(d)) & ONE != ZERO
+    return _position(rows, start[c], deg[c], d) >= 0
+
+
 @njit
-def _admissible(n, start, deg, rows, ends, slots):
+def _admissible(n, start, deg, rows, bits, ends, slots):
     """The admissible edges of the grain in ``rows``, each A-B with A < B as (A, B's slot in
     A's list) into ``ends`` and ``slots``, by A, then B's slot; returns their number."""
     m = 0
@@ -157,7 +172,7 @@ def _admissible(n, start, deg, rows, ends, slots):
             if b <= a or deg[b] < 4:
                 continue
             c, d = _apexes(rows, sa, da, i)
-            if _position(rows, start[c], deg[c], d) < 0:
+            if not _meet(n, start, deg, rows, bits, c, d):
                 ends[m] = a
                 slots[m] = i
                 m += 1
@@ -184,7 +199,7 @@ def _insert_between(rows, s, d, x, y, z):
 
 
 @njit
-def _flip(start, deg, rows, a, i, edge):
+def _flip(n, start, deg, rows, bits, a, i, edge):
     """Flip A-B, B at slot ``i`` of A's list; ``edge`` gets (A, B, C, D)."""
     sa, da = start[a], deg[a]
     b = rows[sa + i]
@@ -197,6 +212,11 @@ def _flip(start, deg, rows, a, i, edge):
     deg[c] += 1
     _insert_between(rows, start[d], deg[d], a, b, c)
     deg[d] += 1
+    if n <= MAX_BITSET_FACES:
+        bits[a] &= ~bit(b)
+        bits[b] &= ~bit(a)
+        bits[c] |= bit(d)
+        bits[d] |= bit(c)
     edge[0], edge[1], edge[2], edge[3] = a, b, c, d
 
 
@@ -233,6 +253,7 @@ def _flip_batch(
     start = np.empty(max_faces, np.int64)
     deg = np.empty(max_faces, np.int64)
     rows = np.empty(max_entries + room * max_faces, np.int32)
+    bits = np.empty(MAX_BITSET_FACES, np.uint64)
     ends = np.empty(3 * max_faces, np.int64)
     slots = np.empty(3 * max_faces, np.int64)
     edge = np.empty(4, np.int64)
@@ -242,14 +263,14 @@ def _flip_batch(
         done[g] = 0
         base = nbr_offsets[f0]
         if status[g] == OK:
-            _load(f0, n, nbr_offsets, lists, room, start, deg, rows)
+            _load(f0, n, nbr_offsets, lists, room, start, deg, rows, bits)
             state = stream_start(key, first_position + g)
             for _ in range(flips):
-                m = _admissible(n, start, deg, rows, ends, slots)
+                m = _admissible(n, start, deg, rows, bits, ends, slots)
                 if m == 0:
                     break
                 r, state = below(state, m)
-                _flip(start, deg, rows, ends[r], slots[r], edge)
+                _flip(n, start, deg, rows, bits, ends[r], slots[r], edge)
                 done[g] += 1
         if done[g]:
             _store(f0, n, base, start, deg, rows, out_offsets, out_lists)
@@ -265,6 +286,7 @@ def _count_admissible(
     start = np.empty(max_faces, np.int64)
     deg = np.empty(max_faces, np.int64)
     rows = np.empty(max_entries + max_faces, np.int32)
+    bits = np.empty(MAX_BITSET_FACES, np.uint64)
     ends = np.empty(3 * max_faces, np.int64)
     slots = np.empty(3 * max_faces, np.int64)
     for g in range(first, last):
@@ -273,8 +295,8 @@ def _count_admissible(
             continue
         f0 = face_offsets[g]
         n = face_offsets[g + 1] - f0
-        _load(f0, n, nbr_offsets, lists, 1, start, deg, rows)
-        counts[g] = _admissible(n, start, deg, rows, ends, slots)
+        _load(f0, n, nbr_offsets, lists, 1, start, deg, rows, bits)
+        counts[g] = _admissible(n, start, deg, rows, bits, ends, slots)
 
 
 @njit
@@ -303,6 +325,7 @@ def _all_flips_batch(
     start = np.empty(max_faces, np.int64)
     deg = np.empty(max_faces, np.int64)
     rows = np.empty(max_entries + max_faces, np.int32)
+    bits = np.empty(MAX_BITSET_FACES, np.uint64)
     ends = np.empty(3 * max_faces, np.int64)
     slots = np.empty(3 * max_faces, np.int64)
     for g in range(first, last):
@@ -310,11 +333,11 @@ def _all_flips_batch(
             continue
         f0 = face_offsets[g]
         n = face_offsets[g + 1] - f0
-        _load(f0, n, nbr_offsets, lists, 1, start, deg, rows)
-        m = _admissible(n, start, deg, rows, ends, slots)
+        _load(f0, n, nbr_offsets, lists, 1, start, deg, rows, bits)
+        m = _admissible(n, start, deg, rows, bits, ends, slots)
         for j in range(m):
             o = out_first[g] + j
             if j:  # the grain as it was before the last flip
-                _load(f0, n, nbr_offsets, lists, 1, start, deg, rows)
-            _flip(start, deg, rows, ends[j], slots[j], edges[o])
+                _load(f0, n, nbr_offsets, lists, 1, start, deg, rows, bits)
+            _flip(n, start, deg, rows, bits, ends[j], slots[j], edges[o])
             _store(out_face_offsets[o], n, out_bases[o], start, deg, rows, out_offsets, out_lists)
