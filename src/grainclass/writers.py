@@ -34,19 +34,38 @@ def _string_buffers(values: Sequence[str] | pa.Array | pa.ChunkedArray) -> tuple
     return starts.astype(np.int64), data
 
 
-def _fields(batch: GrainBatch) -> list[list[str]]:
-    """Each grain's ``key=value`` fields (with their TABs) as columns of strings, where the
-    batch has any: volume and area with every digit, boundary as 1/0, other attributes as
-    read (TABs and line ends in them as blanks, which the line could not hold)."""
+def _float_field(key: str, values: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """``<TAB>key=value`` per grain, the value with every digit (``repr``), none where NaN:
+    int64 offsets and ASCII bytes. The reprs come from one ``repr`` of the whole list, which
+    formats them in C, not one Python call per grain."""
+    prefix = f"\t{key}="
+    if np.isnan(values).any():
+        texts = [f"{prefix}{v!r}" if v == v else "" for v in values.tolist()]
+        return _string_buffers(texts)
+    reprs = repr(values.tolist())[1:-1].split(", ") if len(values) else []
+    lengths = np.fromiter(map(len, reprs), np.int64, len(reprs)) + len(prefix)
+    data = (prefix + prefix.join(reprs)).encode("ascii") if reprs else b""
+    return offsets_from_counts(lengths), np.frombuffer(data, np.uint8)
+
+
+def _fields(batch: GrainBatch) -> list[tuple[np.ndarray, np.ndarray]]:
+    """Each grain's ``key=value`` fields (each after a TAB), a column per key where the batch
+    has any: volume and area with every digit, boundary as 1/0, other attributes as read (TABs
+    and line ends in them as blanks, which the line could not hold). Each column is int64
+    offsets (one per grain and one more) into its bytes."""
+    from grainclass.arrow import strings_from_codes
+
     columns = []
     for key, values in (("volume", batch.volume), ("area", batch.area)):
         if values is not None and not np.isnan(values).all():
-            columns.append([f"\t{key}={v!r}" if v == v else "" for v in values.tolist()])
+            columns.append(_float_field(key, values))
     if batch.boundary is not None and (batch.boundary >= 0).any():
-        columns.append([f"\tboundary={b}" if b >= 0 else "" for b in batch.boundary.tolist()])
+        flags = strings_from_codes(batch.boundary, ("\tboundary=0", "\tboundary=1"))
+        columns.append(_string_buffers(flags))
     for key, values in batch.attributes.items():
         name = key.translate(_UNSAFE).replace("=", " ")
-        columns.append(["" if v is None else f"\t{name}={v.translate(_UNSAFE)}" for v in values])
+        texts = ["" if v is None else f"\t{name}={v.translate(_UNSAFE)}" for v in values]
+        columns.append(_string_buffers(texts))
     return columns
 
 
@@ -59,19 +78,22 @@ def adjacency_text(batch: GrainBatch) -> bytes:
 
     id_offsets, id_bytes = _string_buffers(batch.grain_id)
     columns = _fields(batch)
-    if columns:
-        suffixes = ["".join(parts) for parts in zip(*columns, strict=True)]
-        suffix_offsets, suffix_bytes = _string_buffers(suffixes)
-    else:
-        suffix_offsets, suffix_bytes = np.zeros(len(batch) + 1, np.int64), np.zeros(0, np.uint8)
+    field_offsets = np.zeros((len(columns), len(batch) + 1), np.int64)
+    at = 0
+    for c, (offsets, data) in enumerate(columns):
+        field_offsets[c] = offsets + at
+        at += len(data)
+    field_bytes = (
+        np.concatenate([data for _, data in columns]) if columns else np.zeros(0, np.uint8)
+    )
     return _adjacency_text(
         id_offsets,
         id_bytes,
         batch.face_offsets,
         batch.nbr_offsets,
         batch.neighbors,
-        suffix_offsets,
-        suffix_bytes,
+        field_offsets,
+        field_bytes.astype(np.uint8, copy=False),
     ).tobytes()
 
 

@@ -20,24 +20,21 @@ def _faces_length(face_offsets, nbr_offsets, neighbors, g):
 
 @njit
 def _adjacency_text(
-    id_offsets, id_bytes, face_offsets, nbr_offsets, neighbors, suffix_offsets, suffix_bytes
+    id_offsets, id_bytes, face_offsets, nbr_offsets, neighbors, field_offsets, field_bytes
 ):
     """Adjacency text, a line per grain: its id (``id_bytes[id_offsets[g]:id_offsets[g + 1]]``),
-    a TAB, its faces, its ``suffix`` (the key=value fields, each after a TAB; may be empty)
-    and a newline, as one uint8 array."""
+    a TAB, its faces, its fields (for each row c of ``field_offsets``, int64[C, G + 1], the
+    bytes ``field_bytes[field_offsets[c, g]:field_offsets[c, g + 1]]``: ``<TAB>key=value`` or
+    nothing) and a newline, as one uint8 array."""
     n_grains = face_offsets.shape[0] - 1
+    n_fields = field_offsets.shape[0]
     ends = np.zeros(n_grains + 1, np.int64)
     for g in range(n_grains):
-        ends[g + 1] = (
-            ends[g]
-            + id_offsets[g + 1]
-            - id_offsets[g]
-            + 1
-            + _faces_length(face_offsets, nbr_offsets, neighbors, g)
-            + suffix_offsets[g + 1]
-            - suffix_offsets[g]
-            + 1
-        )
+        size = id_offsets[g + 1] - id_offsets[g] + 2  # the TAB and the newline
+        size += _faces_length(face_offsets, nbr_offsets, neighbors, g)
+        for c in range(n_fields):
+            size += field_offsets[c, g + 1] - field_offsets[c, g]
+        ends[g + 1] = ends[g] + size
     data = np.empty(ends[n_grains], np.uint8)
     for g in range(n_grains):
         p = ends[g]
@@ -55,9 +52,10 @@ def _adjacency_text(
                     data[at(p)] = 32  # " "
                     p += 1
                 p = _write_digits(data, p, neighbors[at(i)])
-        for i in range(suffix_offsets[g], suffix_offsets[g + 1]):
-            data[at(p)] = suffix_bytes[at(i)]
-            p += 1
+        for c in range(n_fields):
+            for i in range(field_offsets[c, g], field_offsets[c, g + 1]):
+                data[at(p)] = field_bytes[at(i)]
+                p += 1
         data[at(p)] = 10  # newline
     return data
 
