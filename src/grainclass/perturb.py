@@ -322,6 +322,18 @@ def output_format(paths: Sequence[str], format: str | None) -> str:
     return "planar_code"
 
 
+@dataclass(frozen=True)
+class Written:
+    """A batch's result and its grains written out; its length is the batch's grains (what a
+    progress line counts)."""
+
+    result: Perturbed | AllFlips
+    data: bytes
+
+    def __len__(self) -> int:
+        return len(self.result.status)
+
+
 def _positioned(batches: Iterator[GrainBatch]) -> Iterator[tuple[int, GrainBatch]]:
     """Each batch with the position of its first grain in the whole input."""
     position = 0
@@ -337,19 +349,24 @@ def perturbed_batches(
     format: str | None = None,
     chunk_size: int = DEFAULT_CHUNK_SIZE,
     triple_edges: tuple[str, str] = DEFAULT_TRIPLE_EDGES,
-) -> Iterator[Perturbed | AllFlips]:
+    write: str | None = None,
+) -> Iterator[Written]:
     """:func:`perturb` (``flips`` per grain) or, when ``flips`` is None, :func:`all_flips` of
-    every batch of the inputs, in input order: reading in a background thread, batches
-    perturbed in threads at once (see :func:`grainclass.pipeline.classified_tables`)."""
+    every batch of the inputs, in input order, each with its grains written in the format
+    ``write`` (``adjacency`` or ``planar_code``; None: no bytes). The inputs are read in a
+    background thread, and batches are perturbed and written in threads at once (see
+    :func:`grainclass.pipeline.classified_tables`)."""
     from grainclass.parallel import map_ordered
     from grainclass.pipeline import prefetch
     from grainclass.readers import read_dataset
+    from grainclass.writers import write_batch
 
     batches = _positioned(read_dataset(paths, format, chunk_size, triple_edges))
 
-    def work(item: tuple[int, GrainBatch]) -> Perturbed | AllFlips:
+    def work(item: tuple[int, GrainBatch]) -> Written:
         position, batch = item
-        return all_flips(batch) if flips is None else perturb(batch, flips, seed, position)
+        result = all_flips(batch) if flips is None else perturb(batch, flips, seed, position)
+        return Written(result, b"" if write is None else write_batch(result.batch, write))
 
     yield from map_ordered(work, prefetch(batches))
 

@@ -71,7 +71,7 @@ def perturb_cmd(
     from grainclass.parallel import set_jobs
     from grainclass.perturb import new_seed, output_format, perturbed_batches
     from grainclass.vocabulary import STATUSES
-    from grainclass.writers import PLANAR_CODE_HEADER, unwritable, write_batch
+    from grainclass.writers import PLANAR_CODE_HEADER, unwritable
 
     if jobs is not None:
         set_jobs(jobs)
@@ -90,10 +90,17 @@ def perturb_cmd(
                     )
                 write_all(sink, PLANAR_CODE_HEADER)
             results = perturbed_batches(
-                list(inputs), None if all_flips else flips, seed, fmt, chunk_size, triple_edges
+                list(inputs),
+                None if all_flips else flips,
+                seed,
+                fmt,
+                chunk_size,
+                triple_edges,
+                write=out_fmt,
             )
-            for result in Progress.on_terminal(quiet).wrap(startup.after_start_up(results)):
-                write_all(sink, write_batch(result.batch, out_fmt))
+            for item in Progress.on_terminal(quiet).wrap(startup.after_start_up(results)):
+                write_all(sink, item.data)
+                result = item.result
                 status = result.status
                 grains += len(status)
                 written += len(result.batch) - unwritable(result.batch, out_fmt)
