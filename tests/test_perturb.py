@@ -7,6 +7,7 @@ derivation of the (2,2,2) polytope below, and from the plain-Python oracle
 
 from __future__ import annotations
 
+import itertools
 import math
 import subprocess
 import sys
@@ -448,3 +449,53 @@ def test_perturb_pipes_into_summarize(tmp_path, voronoi_grains):
     alone = _ok("summarize", saved, "--table", "round", "--format", "csv").stdout
     assert piped.stdout == alone
     assert "2000 grains: 2000 ok, 1 flip(s) each" in perturbed.stderr.decode()
+
+
+# The edge-errors figure (fig. combined_cut_types) -------------------------------------------------
+
+
+def _round_k(round_table: str) -> list[float]:
+    """Percent of ok grains with round_k = 0..6, then sc, from summarize's round table (CSV):
+    the differences of its round<=k columns."""
+    header, row = round_table.strip().splitlines()
+    values = dict(zip(header.split(","), row.split(","), strict=True))
+    levels = [float(values["round0"])] + [float(values[f"round<={k}"]) for k in range(1, 7)]
+    return [levels[0]] + [b - a for a, b in itertools.pairwise(levels)] + [float(values["sc"])]
+
+
+def test_edge_errors_are_summarize_of_perturb_for_each_eepg(tmp_path, voronoi_grains):
+    pytest.importorskip("matplotlib")
+    import pandas as pd
+
+    other = EXAMPLES / "polytopes.txt"
+    figure, data = tmp_path / "e.svg", tmp_path / "e.csv"
+    args = ["--label", "E", "--label", "P", "--seed", 9, "-o", figure, "--data", data, "-q"]
+    _ok("plot", "edge-errors", voronoi_grains, other, *args)
+    table = pd.read_csv(data, dtype={"x": str})
+    assert list(dict.fromkeys(table.series)) == [f"{k} EEPG" for k in range(4)]
+    for label, source, flips in [("E", voronoi_grains, k) for k in range(4)] + [("P", other, 0)]:
+        perturbed = tmp_path / f"{label}{flips}.txt"
+        _ok("perturb", source, "--flips", flips, "--seed", 9, "-o", perturbed, "-q")
+        csv = ["--table", "round", "--format", "csv"]
+        expected = _round_k(_ok("summarize", perturbed, *csv).stdout)
+        drawn = table[(table.dataset == label) & (table.series == f"{flips} EEPG")]
+        assert drawn.x.tolist()[:7] == [str(k) for k in range(7)]
+        assert drawn.x.tolist()[-1] == "sc"
+        got = [*drawn.y.tolist()[:7], drawn.y.tolist()[-1]]
+        assert got == pytest.approx(expected, abs=1e-9)
+        assert sum(drawn.y) == pytest.approx(100.0)
+    assert figure.read_bytes().startswith(b"<?xml")
+
+
+def test_edge_errors_needs_the_first_data_set_as_grains(tmp_path):
+    pytest.importorskip("matplotlib")
+    parquet = tmp_path / "grains.parquet"
+    _ok("classify", EXAMPLES / "polytopes.txt", "-o", parquet, "-q")
+    figure = tmp_path / "e.png"
+    result = _run("plot", "edge-errors", parquet, "-o", figure)
+    assert result.exit_code == 1
+    assert "give the grains themselves" in result.stderr
+    assert not figure.exists()
+    _ok("plot", "edge-errors", EXAMPLES / "polytopes.txt", parquet, "-o", figure, "-q")
+    seeded = _run("plot", "round", parquet, "-o", figure, "--seed", 1)
+    assert seeded.exit_code == 2
