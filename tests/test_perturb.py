@@ -20,7 +20,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import reference
-from conftest import EXAMPLES
+from conftest import EXAMPLES, ROOT
 from grainclass import GrainBatch, classify, read_dataset
 from grainclass.cli import cli
 from grainclass.perturb import all_flips, perturb
@@ -499,3 +499,40 @@ def test_edge_errors_needs_the_first_data_set_as_grains(tmp_path):
     _ok("plot", "edge-errors", EXAMPLES / "polytopes.txt", parquet, "-o", figure, "-q")
     seeded = _run("plot", "round", parquet, "-o", figure, "--seed", 1)
     assert seeded.exit_code == 2
+
+
+@settings(max_examples=10, deadline=None)
+@given(triangulations(min_vertices=65, max_vertices=80, max_flips=200))
+def test_grains_of_more_than_64_faces_flip_as_the_oracle_says(lists):
+    expected = reference.admissible_flips(lists)
+    got = all_flips(GrainBatch.from_lists([lists])).batch
+    edges = [tuple(map(int, e.split("-"))) for e in got.attributes["flipped_edge"]]
+    assert sorted(edges) == sorted(expected)
+    for (a, b), after in zip(edges, _grains(got), strict=True):
+        assert reference.oriented_faces(after) == reference.flip(lists, a, b)
+    once = _lists(perturb(GrainBatch.from_lists([lists]), 1, seed=3).batch)
+    assert reference.oriented_faces(once) == reference.flip(lists, *_flipped_edge(lists, once))
+
+
+def test_planar_code_on_standard_input_comes_out_as_planar_code():
+    data = (EXAMPLES / "plantri-10.pc").read_bytes()
+    out = _ok("perturb", "-", "--flips", 1, "--seed", 2, input=data).stdout_bytes
+    assert out.startswith(b">>planar_code<<")
+    named = _ok(
+        "perturb", "-", "--flips", 1, "--seed", 2, "--input-format", "planar_code", input=data
+    ).stdout_bytes
+    assert named == out
+    mixed = _ok("perturb", "-", EXAMPLES / "polytopes.txt", "--flips", 0, input=data).stdout
+    assert mixed.startswith("1\t")  # adjacency text: not every input is planar_code
+
+
+def test_surface_evolver_grains_come_out_as_adjacency_text_with_their_geometry(tmp_path):
+    source = ROOT / "tests" / "data" / "evolver" / "kelvin_foam.fe"
+    before = classify(next(read_dataset(str(source)))).to_pylist()
+    out = _ok("perturb", source, "--flips", 1, "--seed", 4).stdout
+    after = _classified(tmp_path, out)
+    assert [r["grain_id"] for r in after] == [r["grain_id"] for r in before]
+    assert [r["volume"] for r in after] == [r["volume"] for r in before]
+    assert [r["area"] for r in after] == [r["area"] for r in before]
+    assert [r["n_faces"] for r in after] == [r["n_faces"] for r in before]
+    assert [r["status"] for r in after] == [r["status"] for r in before]
