@@ -19,7 +19,7 @@ from __future__ import annotations
 import dataclasses
 import os
 import secrets
-from collections.abc import Iterator, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -117,6 +117,18 @@ class Perturbed:
         return int(np.count_nonzero((self.status == codes.OK) & (self.flips < self.asked)))
 
 
+def _wrapping(kernel: Callable[..., None]) -> Callable[..., None]:
+    """``kernel``, called with numpy's overflow warnings off in the thread that runs it (the
+    random streams wrap modulo 2^64 on purpose; numpy warns of it where the kernels run as
+    plain Python, under NUMBA_DISABLE_JIT, and its error state is each thread's own)."""
+
+    def call(*args: object) -> None:
+        with np.errstate(over="ignore"):
+            kernel(*args)
+
+    return call
+
+
 def perturb(batch: GrainBatch, flips: int, seed: int, first_position: int = 0) -> Perturbed:
     """Make ``flips`` random admissible edge flips in each ok grain of ``batch``.
 
@@ -160,24 +172,23 @@ def perturb(batch: GrainBatch, flips: int, seed: int, first_position: int = 0) -
     max_faces, max_entries = _sizes(batch)
     out_offsets = np.zeros_like(batch.nbr_offsets)
     out_lists = np.empty_like(batch.neighbors)
-    with np.errstate(over="ignore"):  # the streams wrap modulo 2^64 (seen without the JIT)
-        run_ranges(
-            _flip_batch,
-            g,
-            batch.face_offsets,
-            batch.nbr_offsets,
-            batch.neighbors,
-            checked.lists,
-            checked.status,
-            flips,
-            key,
-            first_position,
-            max_faces,
-            max_entries,
-            out_offsets,
-            out_lists,
-            done,
-        )
+    run_ranges(
+        _wrapping(_flip_batch),
+        g,
+        batch.face_offsets,
+        batch.nbr_offsets,
+        batch.neighbors,
+        checked.lists,
+        checked.status,
+        flips,
+        key,
+        first_position,
+        max_faces,
+        max_entries,
+        out_offsets,
+        out_lists,
+        done,
+    )
     flipped = dataclasses.replace(batch, nbr_offsets=out_offsets, neighbors=out_lists)
     return Perturbed(flipped, checked.status, done, flips)
 
