@@ -20,7 +20,7 @@ import dataclasses
 import os
 import secrets
 from collections.abc import Callable, Iterator, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -335,14 +335,44 @@ def output_format(paths: Sequence[str], format: str | None) -> str:
 
 @dataclass(frozen=True)
 class Written:
-    """A batch's result and its grains written out; its length is the batch's grains (what a
-    progress line counts)."""
+    """A batch's result and its grains written out (``left_out`` of them could not be: see
+    :func:`grainclass.writers.unwritable`); its length is the batch's grains, what a progress
+    line counts."""
 
     result: Perturbed | AllFlips
     data: bytes
+    left_out: int = 0
 
     def __len__(self) -> int:
         return len(self.result.status)
+
+
+@dataclass
+class Counts:
+    """What a run of :func:`perturbed_batches` did, added up batch by batch: grains read, ok
+    ones, those not ok by status, ok grains left with no admissible edge (before the last flip;
+    for all flips, with none at all), grains written, and grains that could not be."""
+
+    grains: int = 0
+    ok: int = 0
+    not_ok: dict[str, int] = field(default_factory=dict)
+    stuck: int = 0
+    written: int = 0
+    left_out: int = 0
+
+    def add(self, item: Written) -> None:
+        from grainclass.vocabulary import STATUSES
+
+        status = item.result.status
+        self.grains += len(status)
+        self.ok += int(np.count_nonzero(status == codes.OK))
+        for code, count in zip(*np.unique(status, return_counts=True), strict=True):
+            if code != codes.OK:
+                name = STATUSES[code]
+                self.not_ok[name] = self.not_ok.get(name, 0) + int(count)
+        self.stuck += item.result.stuck
+        self.written += len(item.result.batch) - item.left_out
+        self.left_out += item.left_out
 
 
 def _positioned(batches: Iterator[GrainBatch]) -> Iterator[tuple[int, GrainBatch]]:
@@ -370,14 +400,17 @@ def perturbed_batches(
     from grainclass.parallel import map_ordered
     from grainclass.pipeline import prefetch
     from grainclass.readers import read_dataset
-    from grainclass.writers import write_batch
+    from grainclass.writers import unwritable, write_batch
 
     batches = _positioned(read_dataset(paths, format, chunk_size, triple_edges))
 
     def work(item: tuple[int, GrainBatch]) -> Written:
         position, batch = item
         result = all_flips(batch) if flips is None else perturb(batch, flips, seed, position)
-        return Written(result, b"" if write is None else write_batch(result.batch, write))
+        if write is None:
+            return Written(result, b"")
+        data = write_batch(result.batch, write)
+        return Written(result, data, unwritable(result.batch, write))
 
     yield from map_ordered(work, prefetch(batches))
 

@@ -5,6 +5,7 @@ from __future__ import annotations
 import click
 
 from grainclass.cli import exit_codes, options, startup
+from grainclass.vocabulary import STATUSES
 
 EPILOG = exit_codes.epilog(
     "success (grains that are not ok, or have no admissible edge left, are written as they "
@@ -69,17 +70,15 @@ def perturb_cmd(
     from grainclass.cli.progress import Progress
     from grainclass.errors import GrainclassError
     from grainclass.parallel import set_jobs
-    from grainclass.perturb import new_seed, output_format, perturbed_batches
-    from grainclass.vocabulary import STATUSES
-    from grainclass.writers import PLANAR_CODE_HEADER, unwritable
+    from grainclass.perturb import Counts, new_seed, output_format, perturbed_batches
+    from grainclass.writers import PLANAR_CODE_HEADER
 
     if jobs is not None:
         set_jobs(jobs)
     fmt = None if input_format == "auto" else input_format
     given = seed is not None
     seed = seed if given else new_seed()
-    grains = written = ok = stuck = dropped = 0
-    not_ok: dict[int, int] = {}
+    counts = Counts()
     with opened(output) as sink:
         try:
             out_fmt = "adjacency" if all_flips else output_format(inputs, fmt)
@@ -100,42 +99,31 @@ def perturb_cmd(
             )
             for item in Progress.on_terminal(quiet).wrap(startup.after_start_up(results)):
                 write_all(sink, item.data)
-                result = item.result
-                status = result.status
-                grains += len(status)
-                written += len(result.batch) - unwritable(result.batch, out_fmt)
-                dropped += unwritable(result.batch, out_fmt)
-                for code, count in zip(*_counts(status), strict=True):
-                    if code:
-                        not_ok[code] = not_ok.get(code, 0) + count
-                ok += int((status == 0).sum())
-                stuck += result.stuck
+                counts.add(item)
         except GrainclassError as exc:
             raise click.ClickException(str(exc)) from None
-    bad = sum(not_ok.values())
-    if not quiet or (stuck and not all_flips) or dropped:
-        detail = ", ".join(f"{count} {STATUSES[code]}" for code, count in sorted(not_ok.items()))
-        if all_flips:
-            what = f"{written} grains written, one per admissible flip of {ok} ok grains"
-            if stuck:
-                what += f" ({stuck} with no admissible edge gave none)"
-            rest = f"; {bad} not ok ({detail}) gave none" if bad else ""
-        else:
-            what = f"{grains} grains: {ok} ok, {flips} flip(s) each"
-            if stuck:
-                what += (
-                    f", but {stuck} had no admissible edge left before the last "
-                    "(kept as they were then)"
-                )
-            rest = f"; {bad} not ok ({detail}), written unchanged" if bad else ""
-            rest += f"; seed {seed}" if not given else ""
-        if dropped:
-            rest += f"; {dropped} record(s) that could not be read left out of the planar_code"
-        click.echo(f"grainclass: {what}{rest}", err=True)
+    if not quiet or (counts.stuck and not all_flips) or counts.left_out:
+        click.echo(f"grainclass: {_report(counts, flips, None if given else seed)}", err=True)
 
 
-def _counts(status):
-    import numpy as np
-
-    codes, counts = np.unique(status, return_counts=True)
-    return codes.tolist(), counts.tolist()
+def _report(counts, flips: int | None, seed: int | None) -> str:
+    """The run's counts in words; ``flips`` None for all flips, ``seed`` if it was drawn."""
+    bad = sum(counts.not_ok.values())
+    detail = ", ".join(f"{counts.not_ok[s]} {s}" for s in STATUSES if s in counts.not_ok)
+    if flips is None:
+        what = f"{counts.written} grains written, one per admissible flip of {counts.ok} ok grains"
+        if counts.stuck:
+            what += f" ({counts.stuck} with no admissible edge gave none)"
+        rest = f"; {bad} not ok ({detail}) gave none" if bad else ""
+    else:
+        what = f"{counts.grains} grains: {counts.ok} ok, {flips} flip(s) each"
+        if counts.stuck:
+            what += (
+                f", but {counts.stuck} had no admissible edge left before the last "
+                "(kept as they were then)"
+            )
+        rest = f"; {bad} not ok ({detail}), written unchanged" if bad else ""
+        rest += f"; seed {seed}" if seed is not None else ""
+    if counts.left_out:
+        rest += f"; {counts.left_out} record(s) that could not be read left out of the planar_code"
+    return what + rest
