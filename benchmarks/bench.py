@@ -6,7 +6,8 @@ rounds that each time plantri alone too: this machine's speed drifts between min
 (b) kernel-only grains per second; (c) 268,402 grains of adjacency text end to end; (d) peak
 resident memory of every run; (e) the first run after installation (numba compiling) against a
 warm run, and ``grainclass --help``; (f) the Voronoi generator; (g) ``grainclass census``
-against plantri alone on the same parts.
+against plantri alone on the same parts; (h) ``grainclass perturb`` against ``grainclass
+classify`` on the same grains, as planar_code and as adjacency text.
 Benchmarks report; they assert nothing (the tests do that).
 """
 
@@ -416,6 +417,81 @@ def bench_census(sizes: list[int], parts: int, work: Path) -> None:
         )
 
 
+def bench_perturb(work: Path, rounds: int, n: int = 16) -> None:
+    """``perturb --flips 1`` and ``--flips 3`` against ``classify`` (with and without the
+    Weinberg vectors) on the same million grains (plantri's part 0/17 at n = 16), read from
+    a planar_code file and from adjacency text, in rounds that each time every command (this
+    machine's speed drifts between minutes): wall seconds and ratios to classify, medians over
+    the rounds; then the kernels' rates in process."""
+    from grainclass.classification import classify
+    from grainclass.perturb import perturb
+    from grainclass.writers import adjacency_text
+
+    plantri = find_plantri()
+    gc = " ".join(GRAINCLASS)
+    planar = work / f"perturb{n}.pc"
+    _sample(plantri, n, planar)
+    batches = _batches(planar, raw=False)
+    grains = sum(len(b) for b in batches)
+    text = work / f"perturb{n}.txt"
+    with open(text, "wb") as out:
+        for batch in batches:
+            out.write(adjacency_text(batch))
+    small_pc, small_txt = work / "small.pc", work / "small.txt"
+    subprocess.run([plantri, "9", str(small_pc)], check=True, capture_output=True)
+    with open(text) as lines, open(small_txt, "w") as out:
+        out.writelines(itertools.islice(lines, 1000))
+    runs = {
+        "classify": "classify {src} -o {out}.parquet -q",
+        "classify --no-types": "classify {src} -o {out}.parquet -q --no-types",
+        "perturb --flips 1": "perturb {src} --flips 1 --seed 1 -o {out}.grains -q",
+        "perturb --flips 3": "perturb {src} --flips 3 --seed 1 -o {out}.grains -q",
+    }
+    print(
+        f"(h) perturb against classify on the same {grains:,} grains (plantri {n}, part 0/"
+        f"{max(1, TRIANGULATIONS.get(n, 0) // 1_000_000)}): wall s, and ratio to classify "
+        f"(medians of {rounds} rounds; the ratios' range), CPU s, peak MB"
+    )
+    for name, src, small in (
+        ("planar_code", planar, small_pc),
+        ("adjacency text", text, small_txt),
+    ):
+        for command in runs.values():  # compile what the runs use before timing them
+            subprocess.run(
+                f"{gc} {command.format(src=small, out=work / 'warm')}", shell=True, check=True
+            )
+        timings: dict[str, list[Timing]] = {label: [] for label in runs}
+        for _ in range(rounds):
+            for label, command in runs.items():
+                timings[label].append(timed(f"{gc} {command.format(src=src, out=work / 'o')}"))
+        size = src.stat().st_size / 1e6
+        print(f"    {name} ({size:.0f} MB):")
+        for label, runs_of in timings.items():
+            print(f"        {label:21s} {_rounds(runs_of, timings['classify'])}")
+    rates = []
+    classify(batches[0])
+    perturb(batches[0], 1, 1)
+    for run in (
+        lambda: [classify(b) for b in batches],
+        lambda: [classify(b, types=False) for b in batches],
+        lambda: [perturb(b, 1, 1) for b in batches],
+        lambda: [perturb(b, 3, 1) for b in batches],
+    ):
+        best = float("inf")
+        for _ in range(PASSES):
+            start = time.perf_counter()
+            run()
+            best = min(best, time.perf_counter() - start)
+        rates.append(grains / best / 1e6)
+    print(
+        "    in process, M grains/s, the best of "
+        f"{PASSES} passes: classify() | classify(types=False) | perturb(1 flip) | "
+        "perturb(3 flips): " + " | ".join(f"{r:5.2f}" for r in rates)
+    )
+    for path in (planar, text):
+        path.unlink()
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--sizes", type=int, nargs="+", default=[14, 15, 16])
@@ -426,12 +502,18 @@ def main() -> None:
     parser.add_argument("--census-sizes", type=int, nargs="+", default=[16])
     parser.add_argument("--census-parts", type=int, default=4)
     parser.add_argument("--census-only", action="store_true", help="only (g), the census")
+    parser.add_argument(
+        "--perturb-only", action="store_true", help="only (h), perturb against classify"
+    )
     args = parser.parse_args()
     if args.rounds < 1:
         parser.error("--rounds must be at least 1")
     print(f"grainclass benchmarks on {available_cpus()} cores, {time.strftime('%Y-%m-%d %H:%M')}")
     with tempfile.TemporaryDirectory() as tmp:
         work = Path(tmp)
+        if args.perturb_only:
+            bench_perturb(work, args.rounds)
+            return
         if not args.census_only:
             bench_startup(work)
             bench_pipelines(args.sizes, args.rounds, work)
@@ -439,6 +521,8 @@ def main() -> None:
             bench_adjacency(work)
             bench_voronoi(work)
         bench_census(args.census_sizes, args.census_parts, work)
+        if not args.census_only:
+            bench_perturb(work, args.rounds)
 
 
 if __name__ == "__main__":

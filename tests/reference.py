@@ -188,3 +188,61 @@ def edge_graph(lists: list[list[int]]) -> nx.Graph:
         if len(triangles[i] & triangles[j]) == 2:
             graph.add_edge(i, j)
     return graph
+
+
+def lists_from_faces(faces: set[tuple[int, int, int]], n: int) -> list[list[int]]:
+    """Rotation lists from oriented triangles (v, x, y): y follows x around v; each list starts
+    at its smallest neighbour."""
+    following: list[dict[int, int]] = [{} for _ in range(n)]
+    for a, b, c in faces:
+        following[a][b] = c
+        following[b][c] = a
+        following[c][a] = b
+    lists = []
+    for v in range(n):
+        order = [min(following[v])]
+        while following[v][order[-1]] != order[0]:
+            order.append(following[v][order[-1]])
+        lists.append(order)
+    return lists
+
+
+def admissible_flips(lists: list[list[int]]) -> dict[tuple[int, int], tuple[int, int]]:
+    """Every admissible edge flip of a triangulation given by rotation lists turning one way,
+    by the paper's rule, from its oriented triangles alone: edge A-B (A < B) lies on the
+    triangles (A, B, C) and (B, A, D); it is admissible when A and B have degree 4 or more and
+    C and D are not adjacent. Returns {(A, B): (C, D)}."""
+    faces = oriented_faces(lists)
+    third = {}
+    for tri in faces:
+        for i in range(3):
+            third[(tri[i], tri[(i + 1) % 3])] = tri[(i + 2) % 3]
+    adjacent = {(v, x) for v, nbrs in enumerate(lists) for x in nbrs}
+    flips = {}
+    for (a, b), c in third.items():
+        if a > b:
+            continue
+        d = third[(b, a)]
+        if len(lists[a]) >= 4 and len(lists[b]) >= 4 and (c, d) not in adjacent:
+            flips[(a, b)] = (c, d)
+    return flips
+
+
+def flip(lists: list[list[int]], a: int, b: int) -> set[tuple[int, int, int]]:
+    """The oriented triangles after flipping edge A-B: (A, B, C) and (B, A, D) give way to
+    (A, D, C) and (D, B, C), which turn the same way around the quadrilateral A-D-B-C."""
+    faces = oriented_faces(lists)
+    (abc,) = [t for t in faces if _directed(t, a, b)]
+    (bad,) = [t for t in faces if _directed(t, b, a)]
+    c = next(v for v in abc if v not in (a, b))
+    d = next(v for v in bad if v not in (a, b))
+    return (faces - {abc, bad}) | {_smallest_first((a, d, c)), _smallest_first((d, b, c))}
+
+
+def _directed(tri: tuple[int, int, int], x: int, y: int) -> bool:
+    return any(tri[i] == x and tri[(i + 1) % 3] == y for i in range(3))
+
+
+def _smallest_first(tri: tuple[int, int, int]) -> tuple[int, int, int]:
+    k = tri.index(min(tri))
+    return tri[k:] + tri[:k]

@@ -11,7 +11,7 @@ from __future__ import annotations
 import math
 import os
 import re
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -30,18 +30,30 @@ class FigureError(GrainclassError):
     """A data set that cannot give the figure asked for (no ok grains, no volumes, no step)."""
 
 
+# Edge errors per grain of fig. combined_cut_types: the first data set of ``edge-errors`` is
+# drawn after this many random flips per grain, each.
+EEPG = (0, 1, 2, 3)
+
+
 @dataclass(frozen=True)
 class Dataset:
-    """One data set of a figure: its label and its summary or type table."""
+    """One data set of a figure: its label and its summary or type table, or, for
+    ``edge-errors``, its grains' counts (:func:`grainclass.summary.merge_tallies`) after
+    ``eepg`` random edge flips per grain."""
 
     label: str
     summary: Summary | None = None
     types: pd.DataFrame | None = None
+    counts: pd.DataFrame | None = None
+    eepg: int = 0
 
 
 def _require_ok_grains(dataset: Dataset) -> None:
     if dataset.summary is not None:
         ok = dataset.summary.headline["ok"]
+    elif dataset.counts is not None:
+        counts = dataset.counts
+        ok = int(counts.loc[counts[schema.STATUS] == "ok", "count"].sum())
     else:
         ok = 0 if dataset.types is None else int(dataset.types["count"].sum())
     if not ok:
@@ -230,6 +242,78 @@ def evolution(
     return _frame(rows, COLUMNS)
 
 
+def round_k_frequencies(datasets: Sequence[Dataset]) -> pd.DataFrame:
+    """Percent of ok grains with round_k = k against k, from 0 to the largest k of any data set,
+    then of the sc family (x ``sc``): figs. round_k_cuts and combined_cut_types. The series
+    says how many random edge flips per grain the data set's grains had (``0 EEPG``, ``1
+    EEPG``, ...)."""
+    ok = []
+    for dataset in datasets:
+        _require_ok_grains(dataset)
+        counts = dataset.counts
+        ok.append(counts[counts[schema.STATUS] == "ok"])
+    largest = max(
+        (int(part[schema.ROUND_K].max()) for part in ok if part[schema.ROUND_K].notna().any()),
+        default=0,
+    )
+    rows = []
+    for dataset, part in zip(datasets, ok, strict=True):
+        total = int(part["count"].sum())
+        by_k = part.groupby(schema.ROUND_K)["count"].sum()
+        sc = int(part.loc[part[schema.FAMILY] == "sc", "count"].sum())
+        series = f"{dataset.eepg} EEPG"
+        for k in range(largest + 1):
+            y = 100.0 * int(by_k.get(float(k), 0)) / total
+            rows.append({"dataset": dataset.label, "series": series, "x": k, "y": y})
+        rows.append(
+            {"dataset": dataset.label, "series": series, "x": "sc", "y": 100.0 * sc / total}
+        )
+    return _frame(rows, COLUMNS)
+
+
+def _edge_error_datasets(
+    paths: Sequence[str],
+    labels: Sequence[str],
+    seed: int,
+    format: str | None,
+    chunk_size: int,
+    triple_edges: tuple[str, str],
+    include_boundary: bool,
+    wrap,
+) -> list[Dataset]:
+    """The first input's grains after 0, 1, 2 and 3 random edge flips per grain (the streams of
+    ``grainclass perturb --flips K --seed SEED``), perturbed as they are read, then the other
+    inputs as they are."""
+    from grainclass.perturb import perturbed_tallies
+    from grainclass.pipeline import is_parquet, tallies
+    from grainclass.summary import merge_tallies
+
+    first = paths[0]
+    if is_parquet(first):
+        raise FigureError(
+            f"{first}: edge-errors flips the edges of the first input's grains, which a "
+            "classified Parquet table no longer holds: give the grains themselves (adjacency "
+            "text, planar_code, Evolver, ...)"
+        )
+    by_level: dict[int, list[pd.DataFrame]] = {k: [] for k in EEPG}
+
+    def unflipped() -> Iterator:  # each batch's tally as read, for wrap to count
+        for level_tallies in perturbed_tallies(
+            first, EEPG, seed, format, chunk_size, triple_edges, include_boundary
+        ):
+            for k, part in zip(EEPG, level_tallies, strict=True):
+                by_level[k].append(part.counts)
+            yield level_tallies[0]
+
+    for _ in wrap(unflipped()):
+        pass
+    datasets = [Dataset(labels[0], counts=merge_tallies(by_level[k]), eepg=k) for k in EEPG]
+    for path, label in zip(paths[1:], labels[1:], strict=True):
+        counted = tallies([path], format, chunk_size, triple_edges, False, include_boundary)
+        datasets.append(Dataset(label, counts=merge_tallies([t.counts for t in wrap(counted)])))
+    return datasets
+
+
 TYPED_KINDS = ("penalty", "ranks")  # kinds drawn from type tables (Weinberg vectors)
 
 
@@ -243,11 +327,13 @@ def read_datasets(
     include_boundary: bool = False,
     n_values: Sequence[int] = (),
     wrap=lambda items: items,
+    seed: int = 0,
 ) -> list[Dataset]:
     """Each input as a data set of the figure ``kind``: its summary (with round rows for
-    ``n_values``), or, for the kinds drawn from types, its type table. Inputs are per-grain
-    Parquet files or anything ``summarize`` reads, classified on the fly; ``wrap`` sees each
-    batch go by (progress)."""
+    ``n_values``), or, for the kinds drawn from types, its type table; for ``edge-errors``,
+    the first input's counts after 0..3 random edge flips per grain from ``seed``, then the
+    others' counts. Inputs are per-grain Parquet files or anything ``summarize`` reads,
+    classified on the fly; ``wrap`` sees each batch go by (progress)."""
     from grainclass import DEFAULT_CHUNK_SIZE
     from grainclass.frequencies import COLUMNS as TYPE_COLUMNS
     from grainclass.frequencies import type_frequencies
@@ -257,6 +343,10 @@ def read_datasets(
 
     chunk_size = chunk_size or DEFAULT_CHUNK_SIZE
     triple_edges = triple_edges or DEFAULT_TRIPLE_EDGES
+    if kind == "edge-errors":
+        return _edge_error_datasets(
+            paths, labels, seed, format, chunk_size, triple_edges, include_boundary, wrap
+        )
     datasets = []
     for path, label in zip(paths, labels, strict=True):
         if kind in TYPED_KINDS:
@@ -294,6 +384,8 @@ def figure_data(
         return penalties(datasets, min_frequency)
     if kind == "ranks":
         return type_ranks(datasets)
+    if kind == "edge-errors":
+        return round_k_frequencies(datasets)
     if kind == "evolution":
         labels = [d.label for d in datasets]
         if steps is None:

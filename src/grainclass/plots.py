@@ -225,6 +225,31 @@ def _evolution(fig: Figure, data: pd.DataFrame) -> None:
     ax.legend()
 
 
+def _edge_errors(fig: Figure, data: pd.DataFrame) -> None:
+    """Figs. round_k_cuts and combined_cut_types: a line per data set and number of edge
+    errors over k, and its sc family as a marker apart, labelled with the EEPG only for the
+    data set drawn with several; on a log scale, where the roughly exponential decay in k is a
+    straight line (a 0% point is left out)."""
+    ax = fig.subplots()
+    values = list(dict.fromkeys(data["x"]))  # 0..k, then sc
+    position = {value: i for i, value in enumerate(values)}
+    several = data.groupby("dataset", sort=False)["series"].nunique() > 1
+    for i, ((name, series), part) in enumerate(data.groupby(["dataset", "series"], sort=False)):
+        x = np.array([position[v] for v in part["x"]], float)
+        y = part["y"].to_numpy(float)
+        y = np.where(y > 0, y, np.nan)
+        sc = (part["x"] == "sc").to_numpy()
+        style = _style_of(i)
+        label = f"{name}, {series}" if several[name] else name
+        ax.plot(x[~sc], y[~sc], label=label, **style)
+        ax.plot(x[sc], y[sc], **(style | {"linestyle": "none"}))
+    ax.set_xticks(range(len(values)), [str(v) for v in values])
+    ax.set_yscale("log")
+    ax.set_xlabel("round$_k$ grains, $k$ (sc: severely constricted)")
+    ax.set_ylabel("% of grains")
+    ax.legend()
+
+
 _DRAW = {
     "round": _round,
     "classes": _classes,
@@ -233,6 +258,7 @@ _DRAW = {
     "penalty": _penalty,
     "ranks": _ranks,
     "evolution": _evolution,
+    "edge-errors": _edge_errors,
 }
 _SIZES = {"classes": (12.0, 5.0)}
 

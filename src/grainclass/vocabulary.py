@@ -26,7 +26,16 @@ TABLES = ("classes", "round", "split")
 ALL_TABLES = (*TABLES, "geometry")
 
 # Kinds of `grainclass plot`: the paper's figures.
-PLOT_KINDS = ("round", "classes", "faces-q", "round-q", "penalty", "ranks", "evolution")
+PLOT_KINDS = (
+    "round",
+    "classes",
+    "faces-q",
+    "round-q",
+    "penalty",
+    "ranks",
+    "evolution",
+    "edge-errors",
+)
 
 # Named grains that `grainclass plot evolution --series` follows beside the classes.
 NAMED_SERIES = ("tetrahedron", "cube", "dodecahedron", "0:m", "triangles")

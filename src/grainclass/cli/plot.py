@@ -83,6 +83,12 @@ def _times(ctx: click.Context, param: click.Parameter, value: str | None) -> lis
     metavar="T1,T2,...",
     help="evolution: the time of each input, in input order (default: the number in its name).",
 )
+@click.option(
+    "--seed",
+    type=click.IntRange(min=0, max=2**64 - 1),
+    help="edge-errors: the seed of the random edge flips, as grainclass perturb --seed "
+    "(default 0).",
+)
 @options.include_boundary
 @options.input_format("--input-format")
 @options.triple_edges
@@ -99,6 +105,7 @@ def plot_cmd(
     min_frequency: float,
     series: tuple[str, ...],
     times: list[float] | None,
+    seed: int | None,
     include_boundary: bool,
     input_format: str,
     triple_edges: tuple[str, str],
@@ -117,6 +124,9 @@ def plot_cmd(
       penalty    flag types' frequency against their penalty, coloured by n
       ranks      type frequency against rank
       evolution  one input per time step: percent of flag grains (or --series) over time
+      edge-errors  percent of grains in round_k against k, and sc, for the first input
+                 after 0, 1, 2 and 3 random edge flips per grain (EEPG, as grainclass
+                 perturb --flips K --seed SEED), beside the other inputs as they are
 
     Each INPUT is a data set (V, R and E in the paper): a per-grain Parquet file or anything
     summarize reads, classified on the fly ('-' reads standard input). Needs the plot extra:
@@ -131,6 +141,8 @@ def plot_cmd(
         raise click.UsageError(f"{len(labels)} --label for {len(inputs)} inputs: give one each")
     if n_values and kind != "round":
         raise click.UsageError("--n chooses the grains of the round figure")
+    if seed is not None and kind != "edge-errors":
+        raise click.UsageError("--seed is the seed of the edge flips of the edge-errors figure")
     startup.read_ahead(inputs, input_format)
     from grainclass.cli.output import opened, write_all
     from grainclass.cli.progress import Progress
@@ -159,6 +171,7 @@ def plot_cmd(
             include_boundary,
             n_values,
             wrap=lambda items: progress.wrap(startup.after_start_up(items)),
+            seed=seed or 0,
         )
         table = figure_data(
             kind,
