@@ -38,8 +38,9 @@ demo: install
 	$(BIN)/grainclass classify examples/polytopes.txt examples/plantri-10.pc -o build/demo.parquet
 	$(BIN)/grainclass summarize build/demo.parquet --n 10
 
-# Every kind of `grainclass plot` for a fresh Poisson-Voronoi data set, and the evolution kind
-# for the bundled grain-growth grains, into build/figures/ (PNG and the numbers drawn as CSV).
+# Every kind of `grainclass plot` for a fresh Poisson-Voronoi data set (edge-errors: perturbed
+# with seed 1), and the evolution kind for the bundled grain-growth grains, into build/figures/
+# (PNG, and the numbers drawn as CSV).
 figures: install
 	@mkdir -p build/figures
 	$(BIN)/grainclass voronoi $(FIGURE_SEEDS) --seed 1 -o build/figures/pv.txt -q
@@ -48,6 +49,8 @@ figures: install
 		$(BIN)/grainclass plot $$kind build/figures/pv.parquet --label Poisson-Voronoi -q \
 			-o build/figures/$$kind.png --data build/figures/$$kind.csv || exit 1; \
 	done
+	$(BIN)/grainclass plot edge-errors build/figures/pv.txt --label Poisson-Voronoi --seed 1 -q \
+		-o build/figures/edge-errors.png --data build/figures/edge-errors.csv
 	$(BIN)/grainclass plot evolution $(GRAIN_GROWTH) --times 21000 --label grain-growth -q \
 		--series flag --series triangles --series tetrahedron --series cube --series 0:m \
 		-o build/figures/evolution.png --data build/figures/evolution.csv
