@@ -83,7 +83,7 @@ bench: install
 bench-census: install
 	$(BIN)/python benchmarks/bench.py --census-only --census-sizes 16 17
 
-# The paper's Table II, split-type table and all* round rows for n = 13 and 14 (a few minutes).
+# The paper's Table II, split-type table and all* round rows for n = 13 and 14 (seconds).
 reproduce-enumeration: install
 	$(BIN)/python scripts/reproduce_enumeration.py
 
