@@ -2,7 +2,8 @@
 
 Runs ``grainclass census`` (which checks every n against plantri's own counts and exits 1 on a
 mismatch), then compares n <= 14 with the paper's Table II and split-type table (numbers
-transcribed from the paper) and prints the extended tables as Markdown, as docs/census.md shows them.
+transcribed from the paper) and prints the extended tables as Markdown, as docs/census.md
+shows them.
 The census directory keeps its checkpoints: an interrupted run continues where it stopped.
 
     python scripts/reproduce_census.py [--n 4..17] [--parts 4] [--output build/census]
