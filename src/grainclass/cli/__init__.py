@@ -70,6 +70,10 @@ def main() -> None:
     except click.ClickException as exc:
         exc.show()
         code = exc.exit_code
+    except MemoryError:
+        # A grain's own needs are refused grain by grain (its row says so); this is the run's.
+        click.echo("grainclass: error: out of memory (a smaller --chunk-size may do)", err=True)
+        code = ExitCode.FAILURE
     except (click.Abort, KeyboardInterrupt):
         click.echo("grainclass: interrupted", err=True)
         code = ExitCode.INTERRUPTED
