@@ -361,6 +361,7 @@ def classify(
     max_bitset_faces: int = MAX_BITSET_FACES,
     types: bool = True,
     grain_memory: int | None = None,
+    belts: int = 0,
 ) -> pa.Table:
     """Classify every grain of a batch (Lutz et al., Secs. II-III and App. B).
 
@@ -377,6 +378,9 @@ def classify(
     grain_memory : int, optional
         The bytes a grain may take (:func:`grain_memory_limit` by default): a grain that could
         need more is invalid, with a message that says so, and the others are classified.
+    belts : int
+        The longest belts to count (3 to 10): the ``belts``, ``splits`` and ``belt_penalties``
+        columns for l = 3..belts (null when 0, the default: they cost more than the rest).
 
     Returns
     -------
@@ -394,7 +398,55 @@ def classify(
     ('flag', 1, 1, 18)
     """
     out = _classify_csr(batch, max_bitset_faces, strings=True, limit=grain_memory)
-    return _table(batch, out, _types(batch, out, types))
+    walked = _types(batch, out, types)
+    return _table(batch, out, walked, _belts(batch, out, belts))
+
+
+def _belts(batch: GrainBatch, out: _Classified, longest: int) -> np.ndarray | None:
+    """Per ok grain and l = 3..``longest``: (belts, split_k, penalty), int64[G, longest - 2,
+    3] (``_kernels/lbelts.py``); None when ``longest`` is 0."""
+    if not longest:
+        return None
+    from grainclass._kernels.lbelts import MAX_BELT_LENGTH, _belts_batch
+
+    if not 3 <= longest <= MAX_BELT_LENGTH:
+        raise ValueError(f"belt lengths go from 3 to at most {MAX_BELT_LENGTH}, not {longest}")
+    profile = np.zeros((len(batch), longest - 2, 3), np.int64)
+    ok = out.status == codes.OK
+    arrays = (*_csr(batch), ok, longest, profile)
+    try:
+        run_ranges(_belts_batch, len(batch), *arrays)
+    except MemoryError:
+        for g in np.flatnonzero(ok):
+            try:
+                _belts_batch(g, g + 1, *arrays)
+            except MemoryError:
+                _refuse(out, int(g))
+    return profile
+
+
+def belt_profile(batch: GrainBatch, status: np.ndarray, longest: int) -> np.ndarray:
+    """The belts of lengths 3..``longest`` of the grains of ``status`` ok: per grain and l,
+    (belts, split_k, penalty), int64[G, longest - 2, 3] (``_kernels/lbelts.py``)."""
+    from grainclass._kernels.lbelts import _belts_batch
+
+    profile = np.zeros((len(batch), longest - 2, 3), np.int64)
+    run_ranges(_belts_batch, len(batch), *_csr(batch), status == codes.OK, longest, profile)
+    return profile
+
+
+def _belt_lists(profile: np.ndarray | None, field: int, ok: np.ndarray, kind) -> pa.Array:
+    """Column ``field`` (0 belts, 1 split_k, 2 penalty) of the belt profile as a list per ok
+    grain, null elsewhere and for every grain without a profile."""
+    g = len(ok)
+    if profile is None:
+        return pa.nulls(g, pa.list_(kind))
+    width = profile.shape[1]
+    offsets = np.arange(0, (g + 1) * width, width, dtype=np.int32)
+    values = numbers(np.ascontiguousarray(profile[:, :, field]).reshape(-1), kind)
+    return pa.ListArray.from_arrays(
+        numbers(offsets, pa.int32()), values, mask=None if ok.all() else booleans(~ok)
+    )
 
 
 @dataclass(frozen=True)
@@ -485,7 +537,9 @@ def _weinberg_strings(types: _Types) -> pa.Array:
     return string_array(*_code_strings(types.weinberg, types.code_offsets, computed), computed)
 
 
-def _table(batch: GrainBatch, out: _Classified, types: _Types) -> pa.Table:
+def _table(
+    batch: GrainBatch, out: _Classified, types: _Types, profile: np.ndarray | None = None
+) -> pa.Table:
     """The per-grain table of :func:`classify` from the kernels' outputs."""
     from grainclass._kernels.columns import _compact, _p_vectors
 
@@ -540,6 +594,9 @@ def _table(batch: GrainBatch, out: _Classified, types: _Types) -> pa.Table:
         schema.SPLIT_M: numbers(n_faces - 4 - split_k, pa.int32(), is_flag),
         schema.BELTS4: numbers(belts[:, 1], pa.int32(), is_flag),
         schema.PENALTY: numbers(belts[:, 2], pa.int64(), is_flag & (belts[:, 2] >= 0)),
+        schema.BELTS: _belt_lists(profile, 0, ok, pa.int64()),
+        schema.SPLITS: _belt_lists(profile, 1, ok, pa.int32()),
+        schema.BELT_PENALTIES: _belt_lists(profile, 2, ok, pa.int64()),
         schema.WEINBERG: _weinberg_strings(types),
         schema.SYMMETRY: numbers(types.symmetry, pa.int32(), with_type),
         schema.CHIRALITY: numbers(types.chirality, pa.int8(), with_type),

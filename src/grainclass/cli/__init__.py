@@ -21,6 +21,7 @@ from grainclass.cli import signals
 from grainclass.cli.census import census_cmd
 from grainclass.cli.classify import classify_cmd
 from grainclass.cli.exit_codes import GRAINS, ExitCode
+from grainclass.cli.penalties import penalties_cmd
 from grainclass.cli.plot import plot_cmd
 from grainclass.cli.summarize import summarize_cmd
 from grainclass.cli.types import types_cmd
@@ -41,7 +42,15 @@ def cli() -> None:
     """
 
 
-for _command in (classify_cmd, summarize_cmd, types_cmd, plot_cmd, voronoi_cmd, census_cmd):
+for _command in (
+    classify_cmd,
+    summarize_cmd,
+    types_cmd,
+    penalties_cmd,
+    plot_cmd,
+    voronoi_cmd,
+    census_cmd,
+):
     cli.add_command(_command)
 
 
