@@ -11,7 +11,7 @@ FIGURE_SEEDS ?= 100000
 # One time step of a grain-growth simulation, one Surface Evolver file per grain.
 GRAIN_GROWTH ?= tests/data/evolver/grain3d
 
-.PHONY: all install demo figures test test-nojit test-lowest lint bench reproduce-enumeration reproduce-voronoi reproduce-census bench-census clean
+.PHONY: all install demo figures test test-nojit test-lowest lint bench bench-prisms fuzz reproduce-enumeration reproduce-voronoi reproduce-census bench-census clean
 
 all: lint test
 
@@ -78,6 +78,16 @@ lint: install
 # Speed and memory, measured in one run (plantri n = 14, 15, 16, three rounds; about ten minutes).
 bench: install
 	$(BIN)/python benchmarks/bench.py
+
+# One giant grain: the k-gonal prism for k = 1,000, 4,000 and 20,000 (a minute or two).
+bench-prisms: install
+	$(BIN)/python benchmarks/bench.py --prisms-only
+
+# Mutation fuzzing of every reader from the seeds in tests/data (10^5 cases, minutes; not in CI):
+# any exception that is not a typed error, a lost row, a case slower than 2 s. FUZZ_CASES=N.
+FUZZ_CASES ?= 100000
+fuzz: install
+	$(BIN)/python scripts/fuzz.py --cases $(FUZZ_CASES)
 
 # The census (n = 16 and 17, several minutes) against plantri alone on the same parts.
 bench-census: install

@@ -7,7 +7,8 @@ rounds that each time plantri alone too: this machine's speed drifts between min
 resident memory of every run; (e) the first run after installation (numba compiling) against a
 warm run, and ``grainclass --help``; (f) the Voronoi generator; (g) ``grainclass census``
 against plantri alone on the same parts; (h) ``grainclass perturb`` against ``grainclass
-classify`` on the same grains, as planar_code and as adjacency text.
+classify`` on the same grains, as planar_code and as adjacency text; (i) one giant grain, the
+k-gonal prism for k = 1,000, 4,000 and 20,000, with and without types.
 Benchmarks report; they assert nothing (the tests do that).
 """
 
@@ -492,6 +493,33 @@ def bench_perturb(work: Path, rounds: int, n: int = 16) -> None:
         path.unlink()
 
 
+def prism_line(k: int) -> str:
+    """The k-gonal prism as a line of adjacency text: k quadrilaterals and two k-gons."""
+    faces = [[k, (i - 1) % k, k + 1, (i + 1) % k] for i in range(k)]
+    faces += [list(range(k)), list(reversed(range(k)))]
+    return f"prism{k}\t" + ";".join(" ".join(map(str, f)) for f in faces) + "\n"
+
+
+def bench_prisms(ks: list[int], work: Path) -> None:
+    """``classify`` of a file holding one k-gonal prism, end to end: a giant grain's time and
+    peak memory (about k^2 / 2 4-belts; with types, about 4k Weinberg walks of 6k steps)."""
+    gc = " ".join(GRAINCLASS)
+    out = work / "prism.parquet"
+    small = work / "prism70.txt"
+    small.write_text(prism_line(68))  # compile the general path and the large walks first
+    subprocess.run(f"{gc} classify {small} -o {out} -q", shell=True, check=True)
+    print("(i) one k-gonal prism (k + 2 faces), classify end to end: wall s, peak MB")
+    for k in ks:
+        path = work / f"prism{k}.txt"
+        path.write_text(prism_line(k))
+        runs = []
+        for flags in ("--no-types", ""):
+            run = timed(f"{gc} classify {path} -o {out} -q {flags}")
+            runs.append(f"{run.seconds:7.2f} s {run.peak_mb:6.0f} MB")
+        print(f"    k={k:>6,}: without types {runs[0]}; with types {runs[1]}")
+        path.unlink()
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--sizes", type=int, nargs="+", default=[14, 15, 16])
@@ -505,14 +533,19 @@ def main() -> None:
     parser.add_argument(
         "--perturb-only", action="store_true", help="only (h), perturb against classify"
     )
+    parser.add_argument("--prisms", type=int, nargs="+", default=[1000, 4000, 20000])
+    parser.add_argument("--prisms-only", action="store_true", help="only (i), the prisms")
     args = parser.parse_args()
     if args.rounds < 1:
         parser.error("--rounds must be at least 1")
     print(f"grainclass benchmarks on {available_cpus()} cores, {time.strftime('%Y-%m-%d %H:%M')}")
     with tempfile.TemporaryDirectory() as tmp:
         work = Path(tmp)
-        if args.perturb_only:
-            bench_perturb(work, args.rounds)
+        if args.perturb_only or args.prisms_only:
+            if args.perturb_only:
+                bench_perturb(work, args.rounds)
+            if args.prisms_only:
+                bench_prisms(args.prisms, work)
             return
         if not args.census_only:
             bench_startup(work)
@@ -523,6 +556,7 @@ def main() -> None:
         bench_census(args.census_sizes, args.census_parts, work)
         if not args.census_only:
             bench_perturb(work, args.rounds)
+            bench_prisms(args.prisms, work)
 
 
 if __name__ == "__main__":

@@ -246,3 +246,32 @@ def _directed(tri: tuple[int, int, int], x: int, y: int) -> bool:
 def _smallest_first(tri: tuple[int, int, int]) -> tuple[int, int, int]:
     k = tri.index(min(tri))
     return tri[k:] + tri[:k]
+
+
+def belt_profile(lists: list[list[int]], longest: int = 6) -> dict[int, tuple[int, int, int]]:
+    """``{l: (belts, split_k, penalty)}`` for l = 3..longest by brute force: every l-subset of
+    vertices whose induced subgraph is one cycle (for l = 3 only those whose removal leaves
+    two sides: a face leaves one), its sides from networkx; split_k is the largest smaller
+    side (0 without a belt), penalty n times the sum of k (n - l - k)."""
+    n = len(lists)
+    graph = nx.Graph((v, x) for v, nbrs in enumerate(lists) for x in nbrs)
+    profile = {}
+    for length in range(3, longest + 1):
+        belts = split_k = penalty = 0
+        for subset in itertools.combinations(range(n), length):
+            induced = graph.subgraph(subset)
+            if induced.number_of_edges() != length or any(d != 2 for _, d in induced.degree()):
+                continue
+            if not nx.is_connected(induced):
+                continue
+            rest = graph.subgraph(set(graph) - set(subset))
+            sizes = [len(c) for c in nx.connected_components(rest)]
+            if len(sizes) < 2:
+                continue
+            assert len(sizes) == 2
+            k = min(sizes)
+            belts += 1
+            split_k = max(split_k, k)
+            penalty += n * k * (n - length - k)
+        profile[length] = (belts, split_k, penalty)
+    return profile

@@ -88,7 +88,7 @@ def test_classify_names_the_layout_and_the_version_in_the_metadata(runner, tmp_p
     assert runner.invoke(cli, ["classify", "-", "-o", str(out)], input=CUBE_LINE).exit_code == 0
     metadata = pq.read_schema(out).metadata
     assert metadata[b"grainclass.version"] == grainclass.__version__.encode()
-    assert metadata[b"grainclass.schema_version"] == b"3"
+    assert metadata[b"grainclass.schema_version"] == b"4"
 
 
 def test_row_groups_have_statistics_to_filter_by_but_not_of_free_text(runner, tmp_path):
@@ -179,7 +179,7 @@ def test_output_that_names_a_folder_is_a_clear_failure_and_leaves_nothing(runner
 
 
 def test_ctrl_c_exits_130(monkeypatch, tmp_path, capsys):
-    def interrupted(batch, types=True):
+    def interrupted(batch, types=True, belts=0):
         raise KeyboardInterrupt
 
     monkeypatch.setattr("grainclass.pipeline.classify", interrupted)
@@ -540,7 +540,7 @@ STUCK = """
 import sys, threading
 import grainclass.pipeline
 started = sys.argv[1]
-def stuck(batch, types=True):
+def stuck(batch, types=True, belts=0):
     open(started, "w").close()
     threading.Event().wait()
 grainclass.pipeline.classify = stuck

@@ -40,7 +40,34 @@ _MESSAGES = {
     codes.E_NOT_SPHERE: "not a sphere: {edges} adjacencies, but the triangles around "
     "faces {a} and {b} do not close up into a sphere",
     codes.E_NON_SIMPLE: "non-simple: a corner where {a} faces meet (face {b} is one of them)",
+    codes.E_TOO_LARGE: "too large: {n} faces and {darts} neighbour entries could need {a_mb} "
+    "of memory, more than the {b_mb} a grain may take (GRAINCLASS_GRAIN_MEMORY, in MB)",
+    codes.E_FOREST_TOO_LARGE: "too large: the strings of its truncation forest would take "
+    "{a_mb}, more than the {b_mb} a grain may take (GRAINCLASS_GRAIN_MEMORY, in MB)",
+    codes.E_MEMORY: "out of memory: the system refused the memory that classifying "
+    "this grain of {n} faces needed",
 }
+
+GRAIN_MEMORY_MB = 2048
+"""The memory a grain may take on the general path by default, in MB
+(``GRAINCLASS_GRAIN_MEMORY`` sets another): a grain that could need more is a row of status
+``invalid`` that says so, not a run that fails."""
+
+
+def grain_memory_limit() -> int:
+    """The bytes a grain may take: ``GRAINCLASS_GRAIN_MEMORY`` MB, else :data:`GRAIN_MEMORY_MB`."""
+    import os
+
+    value = os.environ.get("GRAINCLASS_GRAIN_MEMORY", "")
+    try:
+        mb = float(value) if value.strip() else GRAIN_MEMORY_MB
+    except ValueError:
+        mb = GRAIN_MEMORY_MB
+    return max(0, int(mb * 2**20))
+
+
+def _mb(size: int) -> str:
+    return f"{size / 2**20:,.1f} MB"
 
 
 def _where(batch: GrainBatch, g: int) -> str:
@@ -78,7 +105,12 @@ def _error_messages(batch: GrainBatch, status: np.ndarray, err: np.ndarray) -> l
         else:
             n = int(n_faces[g])
             ab, ba = _asymmetry(batch, int(g), a, b) if code == codes.E_ASYMMETRIC else ("", "")
-            what = _MESSAGES[code].format(a=a, b=b, n=n, last=n - 1, edges=3 * n - 6, ab=ab, ba=ba)
+            darts = int(batch.nbr_offsets[batch.face_offsets[g + 1]])
+            darts -= int(batch.nbr_offsets[batch.face_offsets[g]])
+            what = _MESSAGES[code].format(
+                a=a, b=b, n=n, last=n - 1, edges=3 * n - 6, ab=ab, ba=ba,
+                darts=darts, a_mb=_mb(a), b_mb=_mb(b),
+            )  # fmt: skip
         messages[g] = f"{_where(batch, g)}: {what}"
     return messages
 
@@ -173,11 +205,15 @@ class _Classified:
         )
 
 
-def _classify_csr(batch: GrainBatch, max_small: int, strings: bool) -> _Classified:
+def _classify_csr(
+    batch: GrainBatch, max_small: int, strings: bool, limit: int | None = None
+) -> _Classified:
     """The fast path over the batch, then the general validation over the grains it left,
-    then the general classification over the ok ones of more than ``max_small`` faces."""
+    then the general classification over the ok ones of more than ``max_small`` faces. A grain
+    may take ``limit`` bytes on the general path (:func:`grain_memory_limit` by default)."""
     from grainclass._kernels.batch import _classify_batch
 
+    limit = grain_memory_limit() if limit is None else limit
     out = _Classified.empty(batch, strings)
     run_ranges(
         _classify_batch,
@@ -194,10 +230,10 @@ def _classify_csr(batch: GrainBatch, max_small: int, strings: bool) -> _Classifi
     )
     pending = np.flatnonzero(out.status == codes.PENDING)
     if len(pending):
-        _validate_pending(batch, out, pending, max_small, strings)
+        _validate_pending(batch, out, pending, max_small, strings, limit)
         pending = pending[out.status[pending] == codes.PENDING]
     if len(pending):
-        _classify_general(batch, out, pending, strings)
+        _classify_general(batch, out, pending, strings, limit)
     return out
 
 
@@ -205,45 +241,69 @@ def _csr(batch: GrainBatch) -> tuple[np.ndarray, ...]:
     return (batch.face_offsets, batch.nbr_offsets, batch.neighbors)
 
 
+def _refuse(out: _Classified, g: int) -> None:
+    """Grain g could not be had memory for: invalid, saying so (E_MEMORY)."""
+    out.status[g] = codes.INVALID
+    out.err[g] = (codes.E_MEMORY, 0, 0)
+    out.family[g] = -1
+
+
+def _each_grain(kernel, grains: np.ndarray, arrays: tuple, refuse) -> None:
+    """``kernel`` over the grains ``grains`` in ranges; if the system refuses it memory, again
+    one grain at a time, and ``refuse(g)`` for each grain that it still refuses: one grain
+    that cannot be had memory for does not cost the others their rows."""
+    try:
+        run_ranges(kernel, len(grains), grains, *arrays)
+    except MemoryError:
+        for i in range(len(grains)):
+            try:
+                kernel(i, i + 1, grains, *arrays)
+            except MemoryError:
+                refuse(int(grains[i]))
+
+
 def _validate_pending(
-    batch: GrainBatch, out: _Classified, pending: np.ndarray, max_small: int, strings: bool
+    batch: GrainBatch,
+    out: _Classified,
+    pending: np.ndarray,
+    max_small: int,
+    strings: bool,
+    limit: int | None = None,
 ) -> None:
     """The general validation of the grains ``pending`` (int64 indices) that the fast path
-    left, into ``out``; those of at most ``max_small`` faces found ok are classified too."""
+    left, into ``out``; those of at most ``max_small`` faces found ok are classified too. A
+    grain may take ``limit`` bytes (:func:`grain_memory_limit` by default)."""
     from grainclass._kernels.batch import _validate_pending_batch
 
-    run_ranges(
-        _validate_pending_batch,
-        len(pending),
-        pending,
+    limit = grain_memory_limit() if limit is None else limit
+    arrays = (
         *_csr(batch),
         max_small,
         strings,
+        limit,
         out.status,
         out.consistent,
         out.err,
         *out.rows,
         *out.forests,
     )
+    _each_grain(_validate_pending_batch, pending, arrays, lambda g: _refuse(out, g))
 
 
 def _classify_general(
-    batch: GrainBatch, out: _Classified, pending: np.ndarray, strings: bool
+    batch: GrainBatch,
+    out: _Classified,
+    pending: np.ndarray,
+    strings: bool,
+    limit: int | None = None,
 ) -> None:
     """The general classification of the grains ``pending`` (int64 indices), validated and too
-    large for the fast path, into ``out``."""
+    large for the fast path, into ``out`` (``limit`` as for :func:`_validate_pending`)."""
     from grainclass._kernels.batch import _classify_general_batch
 
-    run_ranges(
-        _classify_general_batch,
-        len(pending),
-        pending,
-        *_csr(batch),
-        strings,
-        out.status,
-        *out.rows,
-        *out.forests,
-    )
+    limit = grain_memory_limit() if limit is None else limit
+    arrays = (*_csr(batch), strings, limit, out.status, out.err, *out.rows, *out.forests)
+    _each_grain(_classify_general_batch, pending, arrays, lambda g: _refuse(out, g))
 
 
 def grain_codes(batch: GrainBatch) -> GrainCodes:
@@ -297,7 +357,11 @@ def _grain_codes(n_faces, status, family, fundamental, n_trees, split, triangles
 
 
 def classify(
-    batch: GrainBatch, max_bitset_faces: int = MAX_BITSET_FACES, types: bool = True
+    batch: GrainBatch,
+    max_bitset_faces: int = MAX_BITSET_FACES,
+    types: bool = True,
+    grain_memory: int | None = None,
+    belts: int = 0,
 ) -> pa.Table:
     """Classify every grain of a batch (Lutz et al., Secs. II-III and App. B).
 
@@ -311,6 +375,12 @@ def classify(
     types : bool
         Compute the ``weinberg``, ``symmetry`` and ``chirality`` columns (null when False):
         the Weinberg walks cost several times the rest of the classification.
+    grain_memory : int, optional
+        The bytes a grain may take (:func:`grain_memory_limit` by default): a grain that could
+        need more is invalid, with a message that says so, and the others are classified.
+    belts : int
+        The longest belts to count (3 to 10): the ``belts``, ``splits`` and ``belt_penalties``
+        columns for l = 3..belts (null when 0, the default: they cost more than the rest).
 
     Returns
     -------
@@ -327,8 +397,56 @@ def classify(
     >>> row["class"], row["split_k"], row["split_m"], row["penalty"]
     ('flag', 1, 1, 18)
     """
-    out = _classify_csr(batch, max_bitset_faces, strings=True)
-    return _table(batch, out, _types(batch, out, types))
+    out = _classify_csr(batch, max_bitset_faces, strings=True, limit=grain_memory)
+    walked = _types(batch, out, types)
+    return _table(batch, out, walked, _belts(batch, out, belts))
+
+
+def _belts(batch: GrainBatch, out: _Classified, longest: int) -> np.ndarray | None:
+    """Per ok grain and l = 3..``longest``: (belts, split_k, penalty), int64[G, longest - 2,
+    3] (``_kernels/lbelts.py``); None when ``longest`` is 0."""
+    if not longest:
+        return None
+    from grainclass._kernels.lbelts import MAX_BELT_LENGTH, _belts_batch
+
+    if not 3 <= longest <= MAX_BELT_LENGTH:
+        raise ValueError(f"belt lengths go from 3 to at most {MAX_BELT_LENGTH}, not {longest}")
+    profile = np.zeros((len(batch), longest - 2, 3), np.int64)
+    ok = out.status == codes.OK
+    arrays = (*_csr(batch), ok, longest, profile)
+    try:
+        run_ranges(_belts_batch, len(batch), *arrays)
+    except MemoryError:
+        for g in np.flatnonzero(ok):
+            try:
+                _belts_batch(g, g + 1, *arrays)
+            except MemoryError:
+                _refuse(out, int(g))
+    return profile
+
+
+def belt_profile(batch: GrainBatch, status: np.ndarray, longest: int) -> np.ndarray:
+    """The belts of lengths 3..``longest`` of the grains of ``status`` ok: per grain and l,
+    (belts, split_k, penalty), int64[G, longest - 2, 3] (``_kernels/lbelts.py``)."""
+    from grainclass._kernels.lbelts import _belts_batch
+
+    profile = np.zeros((len(batch), longest - 2, 3), np.int64)
+    run_ranges(_belts_batch, len(batch), *_csr(batch), status == codes.OK, longest, profile)
+    return profile
+
+
+def _belt_lists(profile: np.ndarray | None, field: int, ok: np.ndarray, kind) -> pa.Array:
+    """Column ``field`` (0 belts, 1 split_k, 2 penalty) of the belt profile as a list per ok
+    grain, null elsewhere and for every grain without a profile."""
+    g = len(ok)
+    if profile is None:
+        return pa.nulls(g, pa.list_(kind))
+    width = profile.shape[1]
+    offsets = np.arange(0, (g + 1) * width, width, dtype=np.int32)
+    values = numbers(np.ascontiguousarray(profile[:, :, field]).reshape(-1), kind)
+    return pa.ListArray.from_arrays(
+        numbers(offsets, pa.int32()), values, mask=None if ok.all() else booleans(~ok)
+    )
 
 
 @dataclass(frozen=True)
@@ -345,7 +463,12 @@ class _Types:
 
 def _types(batch: GrainBatch, out: _Classified, types: bool) -> _Types:
     """The Weinberg walks for the ok grains (for none unless ``types``)."""
-    from grainclass._kernels.weinberg import _rotations, _weinberg_batch
+    from grainclass._kernels.weinberg import (
+        DENSE_FACES,
+        _rotations,
+        _weinberg_batch,
+        _weinberg_large_batch,
+    )
 
     g = len(batch)
     n_faces = batch.n_faces
@@ -362,25 +485,48 @@ def _types(batch: GrainBatch, out: _Classified, types: bool) -> _Types:
     )
     if types:
         rotations = batch.neighbors
+        csr = (batch.face_offsets, batch.nbr_offsets, batch.neighbors)
         unoriented = np.flatnonzero(ok & ~out.consistent)
         if len(unoriented):
             rotations = batch.neighbors.copy()
-            csr = (batch.face_offsets, batch.nbr_offsets, batch.neighbors)
-            run_ranges(_rotations, len(unoriented), unoriented, *csr, rotations)
-        run_ranges(
-            _weinberg_batch,
-            g,
-            batch.face_offsets,
-            batch.nbr_offsets,
-            rotations,
-            ok,
-            int(n_faces.max()) if g else 0,
-            code_offsets,
-            result.weinberg,
-            result.symmetry,
-            result.chirality,
-        )
+            _each_grain(_rotations, unoriented, (*csr, rotations), lambda g: _refuse(out, g))
+        ok &= out.status == codes.OK
+        small = ok & (n_faces <= DENSE_FACES)
+        try:
+            run_ranges(
+                _weinberg_batch,
+                g,
+                batch.face_offsets,
+                batch.nbr_offsets,
+                rotations,
+                small,
+                int(n_faces[small].max()) if small.any() else 0,
+                code_offsets,
+                result.weinberg,
+                result.symmetry,
+                result.chirality,
+            )
+        except MemoryError:
+            for i in np.flatnonzero(small):
+                _weinberg_one(_weinberg_batch, out, int(i), batch.face_offsets, batch.nbr_offsets,
+                              rotations, small, int(n_faces[i]), code_offsets, result.weinberg,
+                              result.symmetry, result.chirality)  # fmt: skip
+        large = np.flatnonzero(ok & ~small)
+        arrays = (*csr[:2], rotations, code_offsets, result.weinberg, result.symmetry,
+                  result.chirality)  # fmt: skip
+        _each_grain(_weinberg_large_batch, large, arrays, lambda g: _refuse(out, g))
+        computed &= out.status == codes.OK
     return result
+
+
+def _weinberg_one(kernel, out: _Classified, g: int, *arrays) -> None:
+    """The Weinberg walks of grain g alone, with scratch for its own size, where the system
+    refused scratch for the largest grain of the batch to all: invalid (E_MEMORY) if it still
+    refuses."""
+    try:
+        kernel(g, g + 1, *arrays)
+    except MemoryError:
+        _refuse(out, g)
 
 
 def _weinberg_strings(types: _Types) -> pa.Array:
@@ -391,7 +537,9 @@ def _weinberg_strings(types: _Types) -> pa.Array:
     return string_array(*_code_strings(types.weinberg, types.code_offsets, computed), computed)
 
 
-def _table(batch: GrainBatch, out: _Classified, types: _Types) -> pa.Table:
+def _table(
+    batch: GrainBatch, out: _Classified, types: _Types, profile: np.ndarray | None = None
+) -> pa.Table:
     """The per-grain table of :func:`classify` from the kernels' outputs."""
     from grainclass._kernels.columns import _compact, _p_vectors
 
@@ -445,7 +593,10 @@ def _table(batch: GrainBatch, out: _Classified, types: _Types) -> pa.Table:
         schema.SPLIT_K: numbers(split_k, pa.int32(), is_flag),
         schema.SPLIT_M: numbers(n_faces - 4 - split_k, pa.int32(), is_flag),
         schema.BELTS4: numbers(belts[:, 1], pa.int32(), is_flag),
-        schema.PENALTY: numbers(belts[:, 2], pa.int64(), is_flag),
+        schema.PENALTY: numbers(belts[:, 2], pa.int64(), is_flag & (belts[:, 2] >= 0)),
+        schema.BELTS: _belt_lists(profile, 0, ok, pa.int64()),
+        schema.SPLITS: _belt_lists(profile, 1, ok, pa.int32()),
+        schema.BELT_PENALTIES: _belt_lists(profile, 2, ok, pa.int64()),
         schema.WEINBERG: _weinberg_strings(types),
         schema.SYMMETRY: numbers(types.symmetry, pa.int32(), with_type),
         schema.CHIRALITY: numbers(types.chirality, pa.int8(), with_type),

@@ -147,9 +147,8 @@ def penalties(datasets: Sequence[Dataset], min_frequency: float = 1e-5) -> pd.Da
         for n, penalty, fraction in zip(
             flag[schema.N_FACES], flag[schema.PENALTY], flag["fraction"], strict=True
         ):
-            rows.append(
-                {"dataset": dataset.label, "series": f"n={n}", "x": int(penalty), "y": fraction}
-            )
+            x = int(penalty) if float(penalty).is_integer() else float(penalty)
+            rows.append({"dataset": dataset.label, "series": f"n={n}", "x": x, "y": fraction})
     return _frame(rows, COLUMNS)
 
 
@@ -328,12 +327,15 @@ def read_datasets(
     n_values: Sequence[int] = (),
     wrap=lambda items: items,
     seed: int = 0,
+    penalty: str = "P4",
 ) -> list[Dataset]:
     """Each input as a data set of the figure ``kind``: its summary (with round rows for
     ``n_values``), or, for the kinds drawn from types, its type table; for ``edge-errors``,
     the first input's counts after 0..3 random edge flips per grain from ``seed``, then the
     others' counts. Inputs are per-grain Parquet files or anything ``summarize`` reads,
-    classified on the fly; ``wrap`` sees each batch go by (progress)."""
+    classified on the fly; ``wrap`` sees each batch go by (progress). For the penalty figure,
+    ``penalty`` names the candidate drawn (:data:`grainclass.penalties.CANDIDATES`; other than
+    P4, from the belts of every length, l = 4..6)."""
     from grainclass import DEFAULT_CHUNK_SIZE
     from grainclass.frequencies import COLUMNS as TYPE_COLUMNS
     from grainclass.frequencies import type_frequencies
@@ -349,7 +351,12 @@ def read_datasets(
         )
     datasets = []
     for path, label in zip(paths, labels, strict=True):
-        if kind in TYPED_KINDS:
+        if kind == "penalty" and penalty != "P4":
+            candidate = _candidate_types(
+                path, label, penalty, format, chunk_size, triple_edges, include_boundary, wrap
+            )
+            datasets.append(candidate)
+        elif kind in TYPED_KINDS:
             tables = grain_tables([path], TYPE_COLUMNS, format, chunk_size, triple_edges)
             types = type_frequencies(wrap(tables), include_boundary=include_boundary)
             datasets.append(Dataset(label, types=types))
@@ -358,6 +365,30 @@ def read_datasets(
             summary = summarize(wrap(counted), tuple(n_values), include_boundary)
             datasets.append(Dataset(label, summary=summary))
     return datasets
+
+
+def _candidate_types(
+    path, label, penalty, format, chunk_size, triple_edges, include_boundary, wrap
+) -> Dataset:
+    """A data set of the flag types of one input with the candidate ``penalty`` in the penalty
+    column and their frequency among its ok grains."""
+    from grainclass.penalties import COLUMNS as PENALTY_COLUMNS
+    from grainclass.penalties import candidates, flag_types
+    from grainclass.pipeline import grain_tables
+
+    longest = 6
+    tables = grain_tables([path], PENALTY_COLUMNS, format, chunk_size, triple_edges, longest)
+    types = flag_types(wrap(tables), include_boundary)
+    frame = pd.DataFrame(
+        {
+            schema.N_FACES: types[schema.N_FACES],
+            schema.CLASS: "flag",
+            schema.PENALTY: candidates(types, longest)[penalty] if len(types) else [],
+            "count": types["count"],
+            "fraction": types["count"] / max(types.attrs["ok_grains"], 1),
+        }
+    )
+    return Dataset(label, types=frame)
 
 
 def figure_data(

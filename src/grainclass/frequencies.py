@@ -32,10 +32,15 @@ OUTPUT += [schema.PENALTY, schema.SYMMETRY, "count", *CHIRAL_COUNTS, "fraction"]
 
 
 def _count_types(
-    grains: pa.Table, n_faces: int | None, class_name: str | None, include_boundary: bool
+    grains: pa.Table,
+    n_faces: int | None,
+    class_name: str | None,
+    include_boundary: bool,
+    belt_length: int = 4,
 ) -> tuple[pd.DataFrame, int]:
     """The types of one table, and how many grains that would count were left out as cut by
-    the sample boundary."""
+    the sample boundary. For a ``belt_length`` other than 4 the split type is that of the
+    l-belts, from the ``splits`` column."""
     keep = pc.equal(grains.column(schema.STATUS), "ok")
     if n_faces is not None:
         keep = pc.and_(keep, pc.equal(grains.column(schema.N_FACES), n_faces))
@@ -46,7 +51,15 @@ def _count_types(
         cut = pc.and_(keep, pc.fill_null(grains.column(schema.BOUNDARY), False))
         excluded = pc.sum(cut).as_py() or 0
         keep = pc.and_(keep, pc.invert(cut))
-    frame = grains.select(COLUMNS).filter(keep).to_pandas()
+    kept = grains.filter(keep)
+    frame = kept.select(COLUMNS).to_pandas()
+    if belt_length != 4:
+        flag = frame[schema.SPLIT_K].notna()
+        index = belt_length - 3
+        splits = [s[index] if s is not None and index < len(s) else None for s in
+                  kept.column(schema.SPLITS).to_pylist()]  # fmt: skip
+        frame[schema.SPLIT_K] = pd.Series(splits, index=frame.index, dtype="Int64").where(flag)
+        frame[schema.SPLIT_M] = frame[schema.N_FACES] - belt_length - frame[schema.SPLIT_K]
     frame[schema.P_VECTOR] = [f"({','.join(map(str, p))})" for p in frame[schema.P_VECTOR]]
     for name, sign in CHIRAL_COUNTS.items():
         frame[name] = (frame[schema.CHIRALITY] == sign).astype("int64")
@@ -62,6 +75,7 @@ def type_frequencies(
     n_faces: int | None = None,
     class_name: str | None = None,
     include_boundary: bool = False,
+    belt_length: int = 4,
 ) -> pd.DataFrame:
     """A frequency table of grain types, most frequent first.
 
@@ -73,6 +87,9 @@ def type_frequencies(
         Keep only grains with this number of faces, or of this class.
     include_boundary : bool
         Count grains cut by a sample boundary too (as ``summarize`` leaves them out).
+    belt_length : int
+        The split type of l-belts for this l (``k:l:m``; the tables need the ``splits``
+        column), rather than the paper's 4-belts (``k:m``).
 
     Returns
     -------
@@ -87,7 +104,7 @@ def type_frequencies(
     parts = []
     excluded = 0
     for table in tables:
-        part, cut = _count_types(table, n_faces, class_name, include_boundary)
+        part, cut = _count_types(table, n_faces, class_name, include_boundary, belt_length)
         parts.append(part)
         excluded += cut
     if not parts:
@@ -98,6 +115,8 @@ def type_frequencies(
     table[["count", *CHIRAL_COUNTS]] = grouped[["count", *CHIRAL_COUNTS]].sum()
     table["fraction"] = table["count"] / table["count"].sum()
     split = table[schema.SPLIT_K].astype("Int64").astype(str) + ":"
+    if belt_length != 4:
+        split += f"{belt_length}:"
     split += table[schema.SPLIT_M].astype("Int64").astype(str)
     table.insert(3, "split", split.where(table[schema.SPLIT_K].notna(), None))
     table = table.drop(columns=[schema.SPLIT_K, schema.SPLIT_M])

@@ -20,8 +20,12 @@ from grainclass.schema import GRAIN_ID, GRAIN_SCHEMA
 from grainclass.vocabulary import CLASSES, FAMILIES, STATUSES
 
 # Columns that earlier versions of the table lacked (types, then geometry and the boundary
-# flag): a table without them is read with them null, as a grain without the data has them.
+# flag, then belts of every length): a table without them is read with them null, as a grain
+# without the data has them.
 _ADDED_LATER = (
+    schema.BELTS,
+    schema.SPLITS,
+    schema.BELT_PENALTIES,
     schema.WEINBERG,
     schema.SYMMETRY,
     schema.CHIRALITY,

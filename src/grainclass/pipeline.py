@@ -74,14 +74,16 @@ def classified_tables(
     chunk_size: int = DEFAULT_CHUNK_SIZE,
     triple_edges: tuple[str, str] = DEFAULT_TRIPLE_EDGES,
     types: bool = True,
+    belts: int = 0,
 ) -> Iterator[pa.Table]:
-    """Per-grain tables for every batch of the inputs, in input order."""
+    """Per-grain tables for every batch of the inputs, in input order, with belts of lengths
+    3..``belts`` if it is not 0."""
     from grainclass.parallel import get_jobs
     from grainclass.warmup import compiling_from_both_ends
 
     with compiling_from_both_ends(get_jobs(), types) as watch:
         batches = prefetch(watch(read_dataset(paths, format, chunk_size, triple_edges)))
-        yield from map_ordered(lambda batch: classify(batch, types=types), batches)
+        yield from map_ordered(lambda batch: classify(batch, types=types, belts=belts), batches)
 
 
 def is_parquet(path: str) -> bool:
@@ -102,20 +104,45 @@ def grain_tables(
     format: str | None = None,
     chunk_size: int = DEFAULT_CHUNK_SIZE,
     triple_edges: tuple[str, str] = DEFAULT_TRIPLE_EDGES,
+    belts: int = 0,
 ) -> Iterator[pa.Table]:
     """Per-grain tables with the Weinberg vectors (``columns`` include status and weinberg):
     from classified Parquet files, which must hold them, or, for any other input, classified
-    now."""
+    now. With ``belts``, belts of lengths 3..``belts`` too, which Parquet files must hold."""
     from grainclass.parquet import iter_grain_tables
 
     for path in paths:
         if is_parquet(path):
             for table in iter_grain_tables(path, columns):
                 _require_types(path, table)
+                if belts:
+                    _require_belts(path, table, belts)
                 yield table
         else:
-            for table in classified_tables([path], format, chunk_size, triple_edges):
+            tables = classified_tables([path], format, chunk_size, triple_edges, belts=belts)
+            for table in tables:
                 yield table.select(columns)
+
+
+def _require_belts(path: str, table: pa.Table, longest: int) -> None:
+    """Refuse a per-grain table whose ok grains lack belts up to length ``longest``."""
+    import pyarrow.compute as pc
+
+    from grainclass import schema
+    from grainclass.errors import InputError
+
+    ok = table.filter(pc.equal(table.column(schema.STATUS), "ok"))
+    if not len(ok):
+        return
+    present = [c for c in (schema.SPLITS, schema.BELT_PENALTIES) if c in ok.column_names]
+    lengths = pc.list_value_length(ok.column(present[0]))
+    shortest = pc.min(pc.fill_null(lengths, 0)).as_py()
+    if shortest < longest - 2:
+        raise InputError(
+            path,
+            f"ok grains without belts of length up to {longest}: classify the input again "
+            f"with --belts --belt-lengths {max(longest, 6)}",
+        )
 
 
 def _require_types(path: str, table: pa.Table) -> None:
@@ -139,24 +166,33 @@ def tallies(
     triple_edges: tuple[str, str] = DEFAULT_TRIPLE_EDGES,
     types: bool = False,
     include_boundary: bool = False,
+    belt_length: int = 4,
 ) -> Iterator[Tally]:
     """What ``summarize`` counts, batch by batch: classified Parquet files are tallied from their
     rows; other inputs are classified on the fly for counting only (planar_code straight from
     its bytes), with the Weinberg vectors if ``types`` asks for them, never into per-grain
-    tables."""
+    tables. With a ``belt_length`` other than 4, flag grains are counted by the split type of
+    their l-belts (Parquet files must hold them)."""
     from grainclass.parallel import get_jobs
     from grainclass.parquet import iter_grain_tables
+    from grainclass.schema import SPLITS
     from grainclass.summary import COLUMNS, tally_batch, tally_table
     from grainclass.warmup import compiling_from_both_ends
 
+    by_length = belt_length != 4
     for path in paths:
         if is_parquet(path):
-            for table in iter_grain_tables(path, COLUMNS):
-                yield tally_table(table, include_boundary)
+            for table in iter_grain_tables(path, [*COLUMNS, SPLITS] if by_length else COLUMNS):
+                if by_length:
+                    _require_belts(path, table, belt_length)
+                yield tally_table(table, include_boundary, belt_length)
             continue
-        # The Weinberg walks need the CSR lists; counting alone reads planar_code as bytes.
-        batches = read_dataset([path], format, chunk_size, triple_edges, raw_planar_code=not types)
+        # The Weinberg walks and the belts need the CSR lists; counting alone reads planar_code
+        # as bytes.
+        raw = not types and not by_length
+        batches = read_dataset([path], format, chunk_size, triple_edges, raw_planar_code=raw)
         with compiling_from_both_ends(get_jobs(), types, counting=not types) as watch:
             yield from map_ordered(
-                lambda batch: tally_batch(batch, include_boundary, types), prefetch(watch(batches))
+                lambda batch: tally_batch(batch, include_boundary, types, belt_length),
+                prefetch(watch(batches)),
             )

@@ -186,7 +186,11 @@ def _penalty(fig: Figure, data: pd.DataFrame) -> None:
 
         fig.colorbar(scatter, ax=ax, label=N_LABEL, ticks=MaxNLocator(integer=True))
     ax.set_yscale("log")
-    ax.set_xlabel("penalty $P = n\\sum_k x_k\\, k(n-k-4)$")
+    candidate = data.attrs.get("penalty", "P4")  # grainclass.penalties.CANDIDATES
+    if candidate == "P4":
+        ax.set_xlabel("penalty $P = n\\sum_k x_k\\, k(n-k-4)$")
+    else:
+        ax.set_xlabel(f"penalty {candidate} (L = 6)")
     ax.set_ylabel("frequency of the flag type")
     legend = ax.legend()
     for handle in legend.legend_handles:  # markers tell the data sets apart, colours n

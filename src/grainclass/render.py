@@ -29,6 +29,17 @@ TITLES = {
 }
 
 
+def _title(summary: Summary, name: str) -> str:
+    """A table's title; the split table's names its belts' length when they are not 4."""
+    length = summary.split.attrs.get("belt_length", 4)
+    if name == "split" and length != 4:
+        return (
+            f"flag grains by number of faces n and split type k:{length}:m of their "
+            f"{length}-belts (m = n-{length}-k)"
+        )
+    return TITLES[name]
+
+
 def headline(summary: Summary) -> str:
     """One line of headline figures: grains by status, mean faces, percent triangles, types."""
     h = summary.headline
@@ -69,10 +80,12 @@ def _display(summary: Summary, name: str) -> pd.DataFrame:
         return shown.astype(str)
     if name == "split":
         shown = table.astype(str)
+        length = table.attrs.get("belt_length", 4)
+        middle = "" if length == 4 else f"{length}:"
         for column in table.columns[1:]:
             k = int(column)
             shown[column] = [
-                f"{count} x {k}:{n - 4 - k}" if count else ""
+                f"{count} x {k}:{middle}{n - length - k}" if count else ""
                 for n, count in zip(table["n"], table[column], strict=True)
             ]
         return shown
@@ -181,9 +194,9 @@ def render(summary: Summary, tables: tuple[str, ...], fmt: str) -> str | bytes:
             body = summary.table(name).to_csv(index=False).rstrip("\n")
             parts.append(body if len(tables) == 1 else f"# {name}\n{body}")
         elif fmt == "markdown":
-            parts.append(f"**{TITLES[name]}**\n\n{_markdown(_display(summary, name))}")
+            parts.append(f"**{_title(summary, name)}**\n\n{_markdown(_display(summary, name))}")
         elif fmt == "latex":
-            parts.append(f"% {TITLES[name]}\n{_latex(_display(summary, name))}")
+            parts.append(f"% {_title(summary, name)}\n{_latex(_display(summary, name))}")
         else:
-            parts.append(f"{TITLES[name]}\n{_text(_display(summary, name))}")
+            parts.append(f"{_title(summary, name)}\n{_text(_display(summary, name))}")
     return "\n\n".join(parts) + "\n"

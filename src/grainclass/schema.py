@@ -4,7 +4,7 @@ import pyarrow as pa
 
 from grainclass import __version__
 
-SCHEMA_VERSION = "3"
+SCHEMA_VERSION = "4"
 
 GRAIN_ID = "grain_id"
 SOURCE = "source"
@@ -25,6 +25,9 @@ SPLIT_K = "split_k"
 SPLIT_M = "split_m"
 BELTS4 = "belts4"
 PENALTY = "penalty"
+BELTS = "belts"
+SPLITS = "splits"
+BELT_PENALTIES = "belt_penalties"
 WEINBERG = "weinberg"
 SYMMETRY = "symmetry"
 CHIRALITY = "chirality"
@@ -53,6 +56,9 @@ GRAIN_SCHEMA = pa.schema(
         (SPLIT_M, pa.int32()),
         (BELTS4, pa.int32()),
         (PENALTY, pa.int64()),
+        (BELTS, pa.list_(pa.int64())),
+        (SPLITS, pa.list_(pa.int32())),
+        (BELT_PENALTIES, pa.list_(pa.int64())),
         (WEINBERG, pa.string()),
         (SYMMETRY, pa.int32()),
         (CHIRALITY, pa.int8()),

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
@@ -99,9 +100,17 @@ def tally(grains: pa.Table) -> pd.DataFrame:
     return counts.rename(columns=names)
 
 
-def tally_table(grains: pa.Table, include_boundary: bool = False) -> Tally:
-    """A :class:`Tally` of per-grain rows (as ``grainclass classify`` writes them)."""
+def tally_table(grains: pa.Table, include_boundary: bool = False, belt_length: int = 4) -> Tally:
+    """A :class:`Tally` of per-grain rows (as ``grainclass classify`` writes them); with a
+    ``belt_length`` other than 4, flag grains by the split type of their l-belts (from the
+    ``splits`` column)."""
     excluded = 0
+    if belt_length != 4:
+        split = pc.list_element(grains.column(schema.SPLITS).combine_chunks(), belt_length - 3)
+        flag = pc.is_valid(grains.column(schema.SPLIT_K))
+        split = pc.if_else(flag, split.cast(pa.int32()), pa.scalar(None, pa.int32()))
+        grains = grains.set_column(grains.schema.get_field_index(schema.SPLIT_K), schema.SPLIT_K,
+                                   split)  # fmt: skip
     if not include_boundary and schema.BOUNDARY in grains.column_names:
         cut = pc.fill_null(grains.column(schema.BOUNDARY), False)
         excluded = pc.sum(cut).as_py() or 0
@@ -149,12 +158,17 @@ def group_rows(columns: Sequence[np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
 
 
 def tally_batch(
-    batch: GrainBatch | PlanarCodeRecords, include_boundary: bool = False, types: bool = False
+    batch: GrainBatch | PlanarCodeRecords,
+    include_boundary: bool = False,
+    types: bool = False,
+    belt_length: int = 4,
 ) -> Tally:
     """A :class:`Tally` of raw grains, classified for counting only (no per-grain rows, no
     truncation-tree strings): the census path of ``summarize``. With ``types`` (a CSR batch
-    only) the Weinberg vectors are computed too, for the distinct types."""
-    from grainclass.classification import grain_codes, grain_codes_and_type_hashes
+    only) the Weinberg vectors are computed too, for the distinct types; with a
+    ``belt_length`` other than 4 (a CSR batch only), flag grains are counted by the split type
+    of their l-belts."""
+    from grainclass.classification import belt_profile, grain_codes, grain_codes_and_type_hashes
     from grainclass.readers.planar_code import PlanarCodeRecords
 
     if isinstance(batch, PlanarCodeRecords) and not types:
@@ -164,6 +178,10 @@ def tally_batch(
         codes, code_hashes = grain_codes_and_type_hashes(batch)
     else:
         codes = grain_codes(batch)
+    if belt_length != 4:
+        profile = belt_profile(batch, codes.status, belt_length)
+        split = np.where(codes.split_k >= 0, profile[:, belt_length - 3, 1], -1)
+        codes = dataclasses.replace(codes, split_k=split)
     boundary = batch.boundary
     keep = None
     if boundary is not None and not include_boundary:
@@ -366,10 +384,11 @@ def round_percentages(counts: pd.DataFrame, n_values: tuple[int, ...] = ()) -> p
     return pd.DataFrame(rows)
 
 
-def split_counts(counts: pd.DataFrame) -> pd.DataFrame:
+def split_counts(counts: pd.DataFrame, belt_length: int = 4) -> pd.DataFrame:
     """Counts of ``flag`` grains by number of faces (rows) and split type k (columns).
 
-    The split type is k:m with m = n - 4 - k. The paper's Table ``tbl:flag_few_vertices``.
+    The split type is k:m with m = n - 4 - k. The paper's Table ``tbl:flag_few_vertices``. For
+    l-belts (the counts tallied so), k:l:m with m = n - l - k: ``attrs["belt_length"]`` is l.
     """
     flag = _ok(counts)[_ok(counts)[schema.CLASS] == "flag"]
     table = flag.pivot_table(
@@ -380,7 +399,9 @@ def split_counts(counts: pd.DataFrame) -> pd.DataFrame:
     table.index = table.index.astype("int64")
     table.index.name = "n"
     table.columns = [str(int(k)) for k in table.columns]
-    return table.reset_index().astype("int64")
+    table = table.reset_index().astype("int64")
+    table.attrs["belt_length"] = belt_length
+    return table
 
 
 def geometry_table(counts: pd.DataFrame) -> pd.DataFrame:
@@ -416,6 +437,7 @@ def summarize(
     grains: pa.Table | Iterable[pa.Table | Tally],
     n_values: tuple[int, ...] = (),
     include_boundary: bool = False,
+    belt_length: int = 4,
 ) -> Summary:
     """Summarize classified grains into the paper's tables.
 
@@ -430,6 +452,9 @@ def summarize(
     include_boundary : bool
         Count grains cut by a sample boundary too (they are left out by default: their faces
         there are cuts, not grain boundaries). Tallies carry their own choice.
+    belt_length : int
+        The split table by the split type of l-belts (k:l:m) rather than 4-belts: tables
+        need the ``splits`` column, tallies must have been made with the same l.
 
     Returns
     -------
@@ -446,7 +471,7 @@ def summarize(
     items = [grains] if isinstance(grains, pa.Table) else grains
     frames, hashes, excluded, typed = [], [], 0, True
     for item in items:
-        part = item if isinstance(item, Tally) else tally_table(item, include_boundary)
+        part = item if isinstance(item, Tally) else tally_table(item, include_boundary, belt_length)
         frames.append(part.counts)
         hashes.append(part.type_hashes)
         excluded += part.boundary_excluded
@@ -460,6 +485,6 @@ def summarize(
         headline=headline,
         classes=class_counts(counts),
         round=round_percentages(counts, tuple(dict.fromkeys(n_values))),  # a row per n, once
-        split=split_counts(counts),
+        split=split_counts(counts, belt_length),
         geometry=geometry_table(counts),
     )

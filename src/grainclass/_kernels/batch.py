@@ -15,7 +15,18 @@ import numpy as np
 
 from grainclass._kernels.belts import _four_belts
 from grainclass._kernels.bits import MAX_BITSET_FACES, ONE, ZERO, bit, lowest, popcount
-from grainclass._kernels.codes import CLASS_OF, E_PARSE, FLAG, INVALID, OK, PENDING, SC, STACKED
+from grainclass._kernels.codes import (
+    CLASS_OF,
+    E_FOREST_TOO_LARGE,
+    E_PARSE,
+    E_TOO_LARGE,
+    FLAG,
+    INVALID,
+    OK,
+    PENDING,
+    SC,
+    STACKED,
+)
 from grainclass._kernels.groups import EMPTY, FIRST_SLOTS, insert
 from grainclass._kernels.reduce import _has_empty_triangle, _reduce
 from grainclass._kernels.small import (
@@ -28,12 +39,14 @@ from grainclass._kernels.small import (
     next_stamp,
 )
 from grainclass._kernels.trees import (
+    _by_round,
+    _forest_bytes,
     _forest_scratch,
     _forest_string,
     _forest_string_small,
     _parents_from_links,
 )
-from grainclass._kernels.validate import _validate, grain_lists
+from grainclass._kernels.validate import _rotation, _validate, grain_lists
 from grainclass._numba import njit, njit_leaf
 
 
@@ -45,38 +58,59 @@ def _work():
         np.zeros(CORNERS, np.uint16),  # corners (small.next_stamp)
         np.empty(MAX_BITSET_FACES, np.uint64),  # link of each removed face
         np.empty(MAX_BITSET_FACES, np.int32),  # round it was removed in
-        _forest_scratch(np.int64(MAX_BITSET_FACES)),  # not a literal: compiled once, for int64
+        # not literals: compiled once, for int64
+        _forest_scratch(np.int64(MAX_BITSET_FACES), np.int64(MAX_BITSET_FACES * 65 + 1)),
     )
 
 
+# Upper bounds on the general path's arrays, counted from its kernels: about sixteen int64
+# arrays of E entries at once (belts' paths, weights, reverse darts, incoming darts) and as
+# many of n.
+BYTES_PER_DART = 128
+BYTES_PER_FACE = 256
+
+
+@njit(inline="always")
+def grain_bytes(n, darts):
+    """What the general path may hold at once for a grain of n faces and ``darts`` neighbour
+    entries, in bytes: a bound on its arrays of n and of E entries (validation, reduction,
+    belts, rotation lists, the Weinberg walks' tables), without the truncation forest's
+    strings (:func:`trees._forest_bytes`), which are weighed once the forest is known."""
+    return BYTES_PER_DART * darts + BYTES_PER_FACE * n
+
+
 @njit
-def _classify_ok_general(n, off, nb, strings, out, at, result, belts):
+def _classify_ok_general(n, off, nb, strings, out, at, result, belts, limit):
     """Classify an ok grain (validated by :func:`_validate_pending_batch`) without bitsets.
     ``result`` gets (family, fundamental, trees, depth, tree length); without ``strings`` only
-    the number of trees."""
-    adj = np.zeros((n, n), np.uint8)
-    for v in range(n):
-        for i in range(off[v], off[v + 1]):
-            adj[v, nb[i]] = 1
+    the number of trees. Returns the bytes its truncation forest's strings would need if they
+    are more than ``limit`` (nothing is written then), else 0."""
     alive = np.empty(n, np.bool_)
     removed_round = np.empty(n, np.int32)
     link = np.empty((n, 3), np.int32)
     result[1] = _reduce(n, off, nb, alive, removed_round, link)
     if result[1] == 4:
         result[0] = STACKED
-        return
-    result[0] = SC if _has_empty_triangle(n, off, nb, adj, alive) else FLAG
+        return 0
+    result[0] = SC if _has_empty_triangle(n, off, nb, alive) else FLAG
     if result[1] < n:
         parent = np.empty(n, np.int32)
         _parents_from_links(n, alive, removed_round, link, parent)
         if strings:
+            order = _by_round(n, removed_round)
+            need = _forest_bytes(n, order, parent)
+            if need > limit:
+                return need
             result[2], result[3], result[4] = _forest_string(
-                n, removed_round, parent, out, at, _forest_scratch(n)
+                n, order, parent, out, at, _forest_scratch(n, need)
             )
         else:
             result[2] = np.sum((parent < 0) & ~alive)
     elif result[0] == FLAG:
-        _four_belts(n, off, nb, adj, belts)
+        rot = np.empty(off[n], np.int64)
+        _rotation(n, off, nb, rot)
+        _four_belts(n, off, rot, belts)
+    return 0
 
 
 @njit_leaf
@@ -212,6 +246,7 @@ def _validate_pending_batch(
     neighbors,
     max_small,
     strings,
+    limit,
     status,
     consistent,
     err,
@@ -227,6 +262,8 @@ def _validate_pending_batch(
     """The grains ``grains[first:last]`` that the fast path left (outputs as in
     :func:`_classify_batch`; ``consistent`` marks those whose lists turn one way as given, as a
     grain of more than 64 faces may): each is validated with its diagnosis (``validate.py``),
+    unless the general path could hold more than ``limit`` bytes for it (:func:`grain_bytes`:
+    it is then invalid, E_TOO_LARGE, before anything is allocated),
     and an ok one of at most ``max_small`` faces, whose lists were only out of the fast path's
     order (turning both ways, or in no cyclic order), is classified on bitsets as by the fast path.
     Larger ok grains stay PENDING, for :func:`_classify_general_batch`. A kernel of its own, so
@@ -237,7 +274,12 @@ def _validate_pending_batch(
     for i in range(first, last):
         g = grains[i]
         n, off, nb = grain_lists(g, face_offsets, nbr_offsets, neighbors)
-        status[g], consistent[g] = _validate(n, off, nb, np.zeros((n, n), np.uint8), err[g])
+        need = grain_bytes(n, off[n])
+        if need > limit:
+            status[g] = INVALID
+            err[g, 0], err[g, 1], err[g, 2] = E_TOO_LARGE, need, limit
+            continue
+        status[g], consistent[g] = _validate(n, off, nb, err[g])
         if status[g] != OK:
             continue
         if n > max_small:
@@ -265,7 +307,9 @@ def _classify_general_batch(
     nbr_offsets,
     neighbors,
     strings,
+    limit,
     status,
+    err,
     family,
     fundamental,
     trees_count,
@@ -279,14 +323,19 @@ def _classify_general_batch(
     :func:`_validate_pending_batch` left PENDING, classified without bitsets (outputs as in
     :func:`_classify_batch`): those of more than 64 faces, and every grain when the tests
     compare the two paths. They are not validated again: that would lengthen its
-    compilation."""
+    compilation. A grain whose truncation forest's strings would take more than ``limit``
+    bytes is invalid (E_FOREST_TOO_LARGE)."""
     result = np.empty(5, np.int64)
     for i in range(first, last):
         g = grains[i]
         n, off, nb = grain_lists(g, face_offsets, nbr_offsets, neighbors)
         at = tree_offsets[g] if strings else 0
         result[:] = -1
-        _classify_ok_general(n, off, nb, strings, tree_bytes, at, result, belts[g])
+        need = _classify_ok_general(n, off, nb, strings, tree_bytes, at, result, belts[g], limit)
+        if need:
+            status[g] = INVALID
+            err[g, 0], err[g, 1], err[g, 2] = E_FOREST_TOO_LARGE, need, limit
+            continue
         status[g] = OK
         family[g], fundamental[g] = result[0], result[1]
         if result[2] >= 0:

@@ -29,6 +29,9 @@ E_EULER = 11  # the neighbour lists describe a surface of Euler characteristic a
 E_UNORDERED = 12  # not a triangulation and the lists are not cyclic: cannot embed
 E_NOT_SPHERE = 13  # 3n - 6 adjacencies but no sphere (the triangle at face a is wrong)
 E_NON_SIMPLE = 14  # a corner where a > 3 faces meet, one of them face b
+E_TOO_LARGE = 15  # the general path could need a bytes for the grain, more than the limit b
+E_FOREST_TOO_LARGE = 16  # its truncation forest's strings would take a bytes, more than b
+E_MEMORY = 17  # the system refused memory that the grain needed (a, b: 0)
 
 # Families, an index into ``vocabulary.FAMILIES``; -1 when the grain is not ok.
 STACKED = 0

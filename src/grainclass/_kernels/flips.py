@@ -90,7 +90,7 @@ def _check_pending_batch(
     for i in range(first, last):
         g = grains[i]
         n, off, nb = grain_lists(g, face_offsets, nbr_offsets, neighbors)
-        status[g], one_way[g] = _validate(n, off, nb, np.zeros((n, n), np.uint8), err[g])
+        status[g], one_way[g] = _validate(n, off, nb, err[g])
 
 
 @njit(inline="always")

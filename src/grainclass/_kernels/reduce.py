@@ -7,6 +7,7 @@ removed at once, and the result does not depend on the order (the paper's unique
 
 import numpy as np
 
+from grainclass._kernels.validate import _triangles
 from grainclass._numba import njit
 
 
@@ -16,25 +17,27 @@ def _reduce(n, off, nb, alive, removed_round, link):
 
     ``alive`` (bool[n]) ends as the fundamental vertex set; ``removed_round`` (int32[n]) is the
     round in which a vertex went (0 if it stayed) and ``link`` (int32[n, 3]) its three
-    neighbours at that moment. Returns the number of fundamental vertices. O(n * rounds * deg).
+    neighbours at that moment. Returns the number of fundamental vertices. A round looks only
+    at the neighbours of the vertices the round before removed, in index order (which of the
+    bipyramid's two apexes stays depends on it): O(n + E) besides sorting them.
     """
     degree = np.empty(n, np.int32)
+    candidates = np.empty(n, np.int64)
+    n_cand = 0
     for v in range(n):
         alive[v] = True
         removed_round[v] = 0
         degree[v] = off[v + 1] - off[v]
+        if degree[v] == 3:
+            candidates[n_cand] = v
+            n_cand += 1
+    looked = np.full(n, -1, np.int32)  # the round a vertex was last made a candidate for
+    touched = np.empty(n, np.int64)
     n_alive = n
-    candidates = np.empty(n, np.int32)
     rnd = 0
-    while n_alive > 4:
-        n_cand = 0
-        for v in range(n):
-            if alive[v] and degree[v] == 3:
-                candidates[n_cand] = v
-                n_cand += 1
-        if n_cand == 0:
-            break
+    while n_alive > 4 and n_cand > 0:
         rnd += 1
+        n_touched = 0
         for c in range(n_cand):
             if n_alive == 4:  # the bipyramid has two: keep the tetrahedron
                 break
@@ -49,28 +52,30 @@ def _reduce(n, off, nb, alive, removed_round, link):
                     degree[x] -= 1
                     link[v, k] = x
                     k += 1
+                    if looked[x] != rnd:
+                        looked[x] = rnd
+                        touched[n_touched] = x
+                        n_touched += 1
+        n_cand = 0
+        for t in range(n_touched):
+            x = touched[t]
+            if alive[x] and degree[x] == 3:
+                candidates[n_cand] = x
+                n_cand += 1
+        candidates[:n_cand].sort()
     return n_alive
 
 
 @njit
-def _has_empty_triangle(n, off, nb, adj, alive):
+def _has_empty_triangle(n, off, nb, alive):
     """True if the fundamental triangulation has a 3-cycle that is not a face (it is then sc).
 
-    Each edge of a triangulation lies on exactly two faces, so an edge with a third common
-    neighbour closes an empty triangle. O(E * deg).
+    A triangulation of the sphere with m vertices has 2m - 4 faces, all triangles: any further
+    triangle is empty. The triangles are counted by degree order (``validate._triangles``),
+    O(E) for a planar graph.
     """
-    for u in range(n):
-        if not alive[u]:
-            continue
-        for i in range(off[u], off[u + 1]):
-            v = nb[i]
-            if v <= u or not alive[v]:
-                continue
-            common = 0
-            for j in range(off[u], off[u + 1]):
-                x = nb[j]
-                if alive[x] and adj[v, x]:
-                    common += 1
-            if common > 2:
-                return True
-    return False
+    m = 0
+    for v in range(n):
+        m += alive[v]
+    _, count = _triangles(n, off, nb, alive, 2 * m - 4)
+    return count < 0

@@ -71,20 +71,53 @@ def _parents_from_links(n, alive, removed_round, link, parent):
 
 
 @njit
-def _forest_scratch(n):
+def _forest_scratch(n, string_bytes):
     """Scratch arrays for :func:`_forest_string` and :func:`_forest_string_small` on up to n
-    vertices."""
+    vertices whose subtrees' strings take up to ``string_bytes`` (:func:`_forest_bytes`)."""
     return (
         np.empty(max(n, 1), np.int32),  # first child of each vertex (-1: a leaf)
         np.empty(max(n, 1), np.int32),  # next sibling
         np.empty(max(n, 1), np.int32),  # the children of one vertex, to sort
-        np.empty(n * (n + 1) + 1, np.uint8),  # strings of the subtrees
+        np.empty(max(string_bytes, 1), np.uint8),  # strings of the subtrees
         np.empty(max(n, 1), np.int64),  # start of each subtree's string
         np.empty(max(n, 1), np.int64),  # its length
         np.empty(max(n, 1), np.int32),  # subtree height
         np.empty(max(n, 1), np.int32),  # roots
         np.empty(n + 1, np.uint64),  # removed vertices by round (bitset path)
     )
+
+
+@njit
+def _by_round(n, removed_round):
+    """The removed vertices (``removed_round > 0``) in the order of their rounds, by a
+    counting sort: children come before their parents. O(n + rounds)."""
+    last = 0
+    for v in range(n):
+        last = max(last, removed_round[v])
+    start = np.zeros(last + 2, np.int64)
+    for v in range(n):
+        start[removed_round[v] + 1] += 1
+    for r in range(last + 1):
+        start[r + 1] += start[r]
+    kept = start[1]  # vertices of round 0
+    order = np.empty(n, np.int64)
+    for v in range(n):
+        order[start[removed_round[v]]] = v
+        start[removed_round[v]] += 1
+    return order[kept:]
+
+
+@njit
+def _forest_bytes(n, order, parent):
+    """Bytes that the strings of every subtree take together: 2 per vertex of each subtree,
+    from n (a bush of leaves) to about n^2 (a path). ``order``: :func:`_by_round`'s."""
+    size = np.ones(n, np.int64)
+    total = 0
+    for v in order:
+        total += 2 * size[v]
+        if parent[v] >= 0:
+            size[parent[v]] += size[v]
+    return total
 
 
 @njit(inline="always")
@@ -137,23 +170,20 @@ def _write_forest(roots, n_roots, buf, start, length, height, out, at):
 
 
 @njit
-def _forest_string(n, removed_round, parent, out, at, scratch):
+def _forest_string(n, order, parent, out, at, scratch):
     """Write the canonical forest string of the removed vertices into ``out`` from ``at``
     (3n bytes suffice; an offset, not a view: a view per grain costs reference counting).
 
-    Nodes are the vertices with ``removed_round > 0``; ``parent`` is -1 for roots. ``scratch``
-    comes from :func:`_forest_scratch`. Returns ``(n_trees, depth, length)``: depth is the number
-    of vertices on a longest root path. O(t^2) for t truncations.
+    ``order`` holds the removed vertices by round (:func:`_by_round`); ``parent`` is -1 for
+    roots. ``scratch`` comes from :func:`_forest_scratch`, with room for :func:`_forest_bytes`.
+    Returns ``(n_trees, depth, length)``: depth is the number of vertices on a longest root
+    path. O(n + the subtrees' strings) besides sorting siblings.
     """
     first_child, next_sibling, kids, buf, start, length, height, roots, _ = scratch
-    for v in range(n):
-        first_child[v] = -1
-    last_round = 0
     n_roots = 0
-    for v in range(n):
-        if removed_round[v] == 0:
-            continue
-        last_round = max(last_round, removed_round[v])
+    for v in order:
+        first_child[v] = -1
+    for v in order:
         if parent[v] >= 0:
             next_sibling[v] = first_child[parent[v]]
             first_child[parent[v]] = v
@@ -162,10 +192,8 @@ def _forest_string(n, removed_round, parent, out, at, scratch):
             n_roots += 1
     # Children are removed in earlier rounds than their parent: build strings round by round.
     pos = 0
-    for rnd in range(1, last_round + 1):
-        for v in range(n):
-            if removed_round[v] == rnd:
-                pos = _subtree(v, first_child, next_sibling, kids, buf, start, length, height, pos)
+    for v in order:
+        pos = _subtree(v, first_child, next_sibling, kids, buf, start, length, height, pos)
     return _write_forest(roots, n_roots, buf, start, length, height, out, at)
 
 

@@ -17,7 +17,11 @@ edge back from the corner across is the reverse dart b -> a. Labels, and what a 
 are kept per dart in one table. Both tables are indexed by ``a << shift | b``, rows a power of
 two wide (at least n), not by ``a * n + b``: a walk's every step computes three such indices
 from the face it has just loaded, and a multiplication's latency would hold up the next load
-(the tables are at most four times n * n; see docs/performance.md).
+(the tables are at most four times n * n; see docs/performance.md). A grain of more than
+DENSE_FACES faces, whose tables of n * n would grow with the square of its size, names its darts
+by their place in its rotation lists instead, and keeps per dart the three darts of the corner
+across it and sigma (:func:`_crossings`): tables of 4E entries, E = 6n - 12
+(:func:`_weinberg_large_batch`, a kernel of its own, compiled only for such a grain).
 
 Orientation +1 turns right with the faces seen from outside, taking the input's neighbour lists
 as counter-clockwise seen from outside (the orientation of face 0's list for text input).
@@ -25,13 +29,17 @@ as counter-clockwise seen from outside (the orientation of face 0's list for tex
 
 import numpy as np
 
-from grainclass._kernels.validate import _rotation, grain_lists
+from grainclass._kernels.validate import _reverse_darts, _rotation, grain_lists
 from grainclass._numba import at, njit, njit_leaf
 
 # Stamps count walks within one kernel call; the table is cleared before they could overflow.
 _MAX_STAMP = 1 << 30
 _USED = np.int64(1) << 31  # the walk has left along this dart
 _LABEL = _USED - 1
+
+# Grains of up to this many faces name their darts by their ends, in tables of at most
+# 4 n^2 entries (256 kB of sigma); larger ones by their place in the lists, in tables of 4E.
+DENSE_FACES = 256
 
 
 @njit_leaf
@@ -261,3 +269,123 @@ def _weinberg_batch(
             keys,
             smallest_faces,
         )
+
+
+@njit
+def _crossings(n, off, rot, table):
+    """The darts' table of a grain of more than DENSE_FACES faces, darts named by their place
+    in its counter-clockwise lists ``rot`` (face v's from ``off[v]``, 0-based): for dart i =
+    a -> b, ``table[4 i : 4 i + 4]`` holds the corner across it, back (b -> a), ahead (a -> r,
+    the dart before i around a) and behind (r -> b, the reverse of the dart after back around
+    b), r = sigma(b, a), and then sigma(a, b), the face after b around a. O(E)."""
+    rev = _reverse_darts(n, off, rot)
+    for v in range(n):
+        d = off[v + 1] - off[v]
+        for k in range(d):
+            i = off[v] + k
+            back = rev[i]
+            b = rot[i]
+            after_back = off[b] + (back - off[b] + 1) % (off[b + 1] - off[b])
+            table[4 * i] = back
+            table[4 * i + 1] = off[v] + (k - 1 + d) % d
+            table[4 * i + 2] = rev[after_back]
+            table[4 * i + 3] = rot[off[v] + (k + 1) % d]
+
+
+@njit
+def _walk_large(table, length, d, turn, best, state, gen, seen, code):
+    """:func:`_walk` on a table of :func:`_crossings`, from dart d (its corner's edge along
+    which the walk leaves)."""
+    stamp = np.int64(gen) << 32
+    back = table[4 * d]  # d's corner is the one across its reverse
+    for dart in (d, table[4 * back + 1], table[4 * back + 2]):
+        seen[dart] = stamp | 1
+    next_label = 2
+    code[0] = 1
+    cmp = state
+    for step in range(1, length):
+        seen[d] |= _USED
+        back, ahead, behind = table[4 * d], table[4 * d + 1], table[4 * d + 2]
+        mark = seen[back]
+        if mark < stamp:  # a corner not seen yet in this walk
+            seen[back] = seen[ahead] = seen[behind] = stamp | next_label
+            code[step] = next_label
+            next_label += 1
+            go = turn  # +1 ahead, -1 behind, 0 back
+        else:
+            code[step] = mark & _LABEL
+            if not mark & _USED:
+                go = 0
+            else:
+                go = turn if not seen[ahead if turn > 0 else behind] & _USED else -turn
+        d = back if go == 0 else (ahead if go > 0 else behind)
+        if cmp == 0:
+            if code[step] > best[step]:
+                return 1
+            if code[step] < best[step]:
+                cmp = -1
+    return cmp
+
+
+@njit
+def _weinberg_large_batch(
+    first, last, grains, face_offsets, nbr_offsets, rotations, code_offsets, codes, symmetry,
+    chirality,
+):  # fmt: skip
+    """:func:`_weinberg_batch` for the ok grains ``grains[first:last]`` of more than
+    DENSE_FACES faces, on tables of :func:`_crossings`, each of 4E entries: memory grows with a
+    grain's size, not its square. The starts are chosen as :func:`_weinberg` chooses them."""
+    for j in range(first, last):
+        g = grains[j]
+        n, off, rot = grain_lists(g, face_offsets, nbr_offsets, rotations)
+        m = off[n]
+        table = np.empty(4 * m, np.int64)
+        _crossings(n, off, rot, table)
+        seen = np.zeros(m, np.int64)
+        code = np.empty(6 * n - 11, np.int32)
+        best = codes[code_offsets[g] : code_offsets[g] + 6 * n - 11]
+        faces = off[1:] - off[:-1]
+        t = 2 * n - 4
+        length = 3 * t + 1
+        sizes = t + 1
+        smallest = faces.min()
+        walks = np.empty(2 * m, np.int64)
+        keys = np.empty(2 * m, np.int64)
+        least = sizes * sizes
+        starts = 0
+        for v in range(n):
+            if faces[v] != smallest:
+                continue
+            for i in range(off[v], off[v + 1]):
+                x = rot[i]
+                left = table[4 * i]
+                key_right = faces[table[4 * i + 3]] * sizes + faces[x]
+                key_left = faces[table[4 * left + 3]] * sizes + faces[x]
+                walks[starts], keys[starts] = (i << 1) | 1, key_right
+                walks[starts + 1], keys[starts + 1] = left << 1, key_left
+                starts += 2
+                least = min(least, key_right, key_left)
+        best[0] = -1
+        kept = 0
+        gen = np.int64(0)
+        for k in range(starts):
+            if keys[k] != least:
+                continue
+            gen += 1
+            state = -1 if best[0] < 0 else 0
+            start = walks[k]
+            turn = 1 if start & 1 else -1
+            result = _walk_large(table, length, start >> 1, turn, best, state, gen, seen, code)
+            if result < 0:
+                for i in range(length):
+                    best[i] = code[i]
+                kept = 0
+            if result <= 0:
+                walks[kept] = start
+                kept += 1
+        left = 0
+        for k in range(kept):
+            left += not walks[k] & 1
+        right = kept - left
+        symmetry[g] = kept
+        chirality[g] = 0 if right and left else (-1 if right else 1)

@@ -21,6 +21,7 @@ from grainclass.cli import signals
 from grainclass.cli.census import census_cmd
 from grainclass.cli.classify import classify_cmd
 from grainclass.cli.exit_codes import GRAINS, ExitCode
+from grainclass.cli.penalties import penalties_cmd
 from grainclass.cli.perturb import perturb_cmd
 from grainclass.cli.plot import plot_cmd
 from grainclass.cli.summarize import summarize_cmd
@@ -47,6 +48,7 @@ for _command in (
     summarize_cmd,
     types_cmd,
     plot_cmd,
+    penalties_cmd,
     perturb_cmd,
     voronoi_cmd,
     census_cmd,
@@ -79,6 +81,10 @@ def main() -> None:
     except click.ClickException as exc:
         exc.show()
         code = exc.exit_code
+    except MemoryError:
+        # A grain's own needs are refused grain by grain (its row says so); this is the run's.
+        click.echo("grainclass: error: out of memory (a smaller --chunk-size may do)", err=True)
+        code = ExitCode.FAILURE
     except (click.Abort, KeyboardInterrupt):
         click.echo("grainclass: interrupted", err=True)
         code = ExitCode.INTERRUPTED

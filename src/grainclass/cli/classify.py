@@ -50,6 +50,19 @@ def _is_file_or_folder(path: str) -> bool:
 )
 @options.reading_grains("--format", "--input-format")
 @click.option("--strict", is_flag=True, help="Exit 1 if any grain is not a simple polytope.")
+@click.option(
+    "--belts",
+    "with_belts",
+    is_flag=True,
+    help="Count the belts of every length 3..6 of each ok grain (columns belts, splits, "
+    "belt_penalties); they cost more than the rest of the classification.",
+)
+@click.option(
+    "--belt-lengths",
+    type=click.IntRange(3, 10),
+    metavar="L",
+    help="Belts of lengths 3..L (3 to 10; implies --belts).",
+)
 def classify_cmd(
     inputs: tuple[str, ...],
     output: str | None,
@@ -60,6 +73,8 @@ def classify_cmd(
     quiet: bool,
     types: bool,
     strict: bool,
+    with_belts: bool,
+    belt_lengths: int | None,
 ) -> None:
     """Classify every grain of INPUT... into a per-grain Parquet table.
 
@@ -85,7 +100,10 @@ def classify_cmd(
     counts: dict[str, int] = {}
     try:
         with GrainTableWriter(output) as writer:
-            tables = classified_tables(list(inputs), fmt, chunk_size, triple_edges, types)
+            longest = belt_lengths or (6 if with_belts else 0)
+            tables = classified_tables(
+                list(inputs), fmt, chunk_size, triple_edges, types, belts=longest
+            )
             for table in Progress.on_terminal(quiet).wrap(startup.after_start_up(tables)):
                 for item in table.column("status").value_counts().to_pylist():
                     counts[item["values"]] = counts.get(item["values"], 0) + item["counts"]

@@ -134,6 +134,16 @@ table_format = click.option(
     help="Output format (default: from the -o extension, else text).",
 )
 
+belt_length = click.option(
+    "--belt-length",
+    type=click.IntRange(3, 10),
+    default=4,
+    show_default=True,
+    metavar="L",
+    help="The split type of L-belts (k:L:m) instead of 4-belts; Parquet inputs need the "
+    "belts of classify --belts (--belt-lengths L for L > 6).",
+)
+
 include_boundary = click.option(
     "--include-boundary", is_flag=True, help="Count grains cut by a sample boundary too."
 )

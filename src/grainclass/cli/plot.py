@@ -72,6 +72,14 @@ def _times(ctx: click.Context, param: click.Parameter, value: str | None) -> lis
     help="penalty: the least frequency of a flag type drawn.",
 )
 @click.option(
+    "--penalty",
+    type=click.Choice(["P4", "P4..L", "P4/sym", "P4..L/sym", "sym", "(1+P4)*sym", "(1+P4..L)*sym"]),
+    default="P4",
+    show_default=True,
+    help="penalty: the candidate drawn (see grainclass penalties; P4 is the paper's, the "
+    "others need the belts of classify --belts, L = 6).",
+)
+@click.option(
     "--series",
     multiple=True,
     type=click.Choice([*CLASSES, *NAMED_SERIES]),
@@ -103,6 +111,7 @@ def plot_cmd(
     data: str | None,
     n_values: tuple[int, ...],
     min_frequency: float,
+    penalty: str,
     series: tuple[str, ...],
     times: list[float] | None,
     seed: int | None,
@@ -121,7 +130,7 @@ def plot_cmd(
       classes    frequency of each class against the number of faces n
       faces-q    mean isoperimetric quotient Q against n, with standard errors
       round-q    mean Q against round_k
-      penalty    flag types' frequency against their penalty, coloured by n
+      penalty    flag types' frequency against their penalty, coloured by n (--penalty)
       ranks      type frequency against rank
       evolution  one input per time step: percent of flag grains (or --series) over time
       edge-errors  percent of grains in round_k against k, and sc, for the first input
@@ -143,6 +152,8 @@ def plot_cmd(
         raise click.UsageError("--n chooses the grains of the round figure")
     if seed is not None and kind != "edge-errors":
         raise click.UsageError("--seed is the seed of the edge flips of the edge-errors figure")
+    if penalty != "P4" and kind != "penalty":
+        raise click.UsageError("--penalty chooses the candidate of the penalty figure")
     startup.read_ahead(inputs, input_format)
     from grainclass.cli.output import opened, write_all
     from grainclass.cli.progress import Progress
@@ -172,6 +183,7 @@ def plot_cmd(
             n_values,
             wrap=lambda items: progress.wrap(startup.after_start_up(items)),
             seed=seed or 0,
+            penalty=penalty,
         )
         table = figure_data(
             kind,
@@ -182,6 +194,7 @@ def plot_cmd(
             steps=times,
             label=labels[0] if labels else "steps",
         )
+        table.attrs["penalty"] = penalty
         draw(kind, table, output)
     except GrainclassError as exc:
         raise click.ClickException(str(exc)) from None

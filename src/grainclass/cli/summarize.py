@@ -26,6 +26,7 @@ from grainclass.vocabulary import ALL_TABLES, TABLES
 )
 @options.stdout_or_file
 @options.include_boundary
+@options.belt_length
 @options.reading_grains("--input-format", types_default=False)
 def summarize_cmd(
     grains: tuple[str, ...],
@@ -34,6 +35,7 @@ def summarize_cmd(
     n_values: tuple[int, ...],
     output: str,
     include_boundary: bool,
+    belt_length: int,
     input_format: str,
     triple_edges: tuple[str, str],
     chunk_size: int,
@@ -66,6 +68,8 @@ def summarize_cmd(
         raise click.UsageError(
             f"--n adds rows to the round table, which --table {table_name} leaves out"
         )
+    if belt_length != 4 and tables != ("split",):
+        raise click.UsageError("--belt-length changes the split table: use it with --table split")
     if fmt == "parquet":
         refuse_parquet_on_terminal(output)
     if jobs is not None:
@@ -74,11 +78,15 @@ def summarize_cmd(
     with opened(output) as sink:
         try:
             stream = tallies(
-                list(grains), in_fmt, chunk_size, triple_edges, types, include_boundary
-            )
+                list(grains), in_fmt, chunk_size, triple_edges, types, include_boundary,
+                belt_length,
+            )  # fmt: skip
             progress = Progress.on_terminal(quiet)
             summary = summarize(
-                progress.wrap(startup.after_start_up(stream)), n_values, include_boundary
+                progress.wrap(startup.after_start_up(stream)),
+                n_values,
+                include_boundary,
+                belt_length,
             )
         except GrainclassError as exc:
             raise click.ClickException(str(exc)) from None

@@ -26,6 +26,7 @@ from grainclass.vocabulary import CLASSES
     help="Also write VoroTop's .distribution file: (code) total left achiral right.",
 )
 @options.include_boundary
+@options.belt_length
 @options.reading_grains("--input-format", types_default=None)
 def types_cmd(
     grains: tuple[str, ...],
@@ -36,6 +37,7 @@ def types_cmd(
     output: str,
     vorotop: str | None,
     include_boundary: bool,
+    belt_length: int,
     input_format: str,
     triple_edges: tuple[str, str],
     chunk_size: int,
@@ -44,7 +46,8 @@ def types_cmd(
 ) -> None:
     """Count grains by combinatorial type (Weinberg vector), most frequent first.
 
-    Each type comes with its faces, p-vector, class, split type and penalty (flag grains),
+    Each type comes with its faces, p-vector, class, split type (of 4-belts, or of l-belts with
+    --belt-length l) and penalty (flag grains),
     symmetry, count and fraction. GRAINS are per-grain Parquet tables or any input classify reads.
     Grains cut by a sample boundary are left out, as summarize leaves them.
     """
@@ -56,6 +59,7 @@ def types_cmd(
     from grainclass.parallel import set_jobs
     from grainclass.pipeline import grain_tables
     from grainclass.render import render_frame
+    from grainclass.schema import SPLITS
 
     fmt = table_format(output_format, output)
     if fmt == "parquet":
@@ -65,12 +69,18 @@ def types_cmd(
     in_fmt = None if input_format == "auto" else input_format
     with opened(output) as sink, opened(vorotop) if vorotop else nullcontext() as distribution:
         try:
-            stream = grain_tables(list(grains), COLUMNS, in_fmt, chunk_size, triple_edges)
+            by_length = belt_length != 4
+            columns = [*COLUMNS, SPLITS] if by_length else COLUMNS
+            stream = grain_tables(
+                list(grains), columns, in_fmt, chunk_size, triple_edges,
+                belts=max(belt_length, 6) if by_length else 0,
+            )  # fmt: skip
             table = type_frequencies(
                 Progress.on_terminal(quiet).wrap(startup.after_start_up(stream)),
                 n_faces,
                 class_name,
                 include_boundary,
+                belt_length,
             )
         except GrainclassError as exc:
             raise click.ClickException(str(exc)) from None
