@@ -657,6 +657,31 @@ def test_an_interrupt_just_after_the_rename_leaves_the_whole_file(tmp_path, monk
     assert list(tmp_path.iterdir()) == [out]
 
 
+def test_a_stop_just_after_the_temporary_file_is_made_leaves_nothing(tmp_path, monkeypatch):
+    """Ctrl-C that lands as the temporary file is created, before the block that removes it on
+    the way out, left it behind (an interrupted census kept a part's .tmp file)."""
+    import signal
+    import tempfile
+
+    from grainclass import atomic
+
+    make = tempfile.mkstemp
+
+    def make_then_stop(*args, **kwargs):
+        made = make(*args, **kwargs)
+        signal.raise_signal(signal.SIGINT)  # Python's own handler: KeyboardInterrupt
+        return made
+
+    monkeypatch.setattr(atomic.tempfile, "mkstemp", make_then_stop)
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
+    try:
+        with pytest.raises(KeyboardInterrupt), atomic.atomic_output(str(tmp_path / "out")) as sink:
+            sink.write(b"never\n")
+    finally:
+        signal.signal(signal.SIGINT, previous)
+    assert list(tmp_path.iterdir()) == []
+
+
 def test_an_output_file_that_may_not_be_written_is_not_replaced(runner, tmp_path, monkeypatch):
     """A results file made read-only was replaced (renaming needs only the folder's
     permission), where the shell's > refuses it. Root may write any file: os.access says so,

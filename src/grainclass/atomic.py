@@ -5,6 +5,7 @@ from __future__ import annotations
 import contextlib
 import os
 import re
+import signal
 import stat
 import sys
 import tempfile
@@ -13,6 +14,10 @@ from contextlib import contextmanager
 from typing import BinaryIO
 
 from grainclass.errors import OutputError
+
+_STOPS = {
+    getattr(signal, name) for name in ("SIGINT", "SIGTERM", "SIGHUP") if hasattr(signal, name)
+}
 
 # Paths that name an open file descriptor of this process, whatever it is open on.
 _FD_ALIAS = re.compile(r"^/(dev/(stdout|stderr|fd/\d+)|proc/(self|\d+)/fd/\d+)$")
@@ -55,13 +60,18 @@ def atomic_output(path: str, binary_stdout_ok: bool = True) -> Iterator[BinaryIO
         # over it would need only the folder's permission.
         raise OutputError(f"{path}: cannot write here (Permission denied)")
     target = os.path.realpath(path)
+    # A stop signal between the temporary file's creation and the block that removes it would
+    # leave it behind: they are held back until that block has begun.
+    held = _hold_stops()
     try:
         fd, tmp = tempfile.mkstemp(
             prefix=f".{os.path.basename(target)}.", suffix=".tmp", dir=os.path.dirname(target)
         )
     except OSError as exc:
+        _release_stops(held)
         raise OutputError(f"{path}: cannot write here ({exc.strerror})") from None
     try:
+        _release_stops(held)
         with _as_output_error(path):
             with os.fdopen(fd, "wb") as sink:
                 yield sink
@@ -91,3 +101,17 @@ def _as_output_error(name: str) -> Iterator[None]:
         raise
     except OSError as exc:
         raise OutputError(f"{name}: cannot write here ({exc.strerror or exc})") from None
+
+
+def _hold_stops() -> set[signal.Signals] | None:
+    """Hold back the stop signals in this thread: the mask before, to restore; None where
+    signals cannot be masked."""
+    if not hasattr(signal, "pthread_sigmask"):
+        return None
+    return signal.pthread_sigmask(signal.SIG_BLOCK, _STOPS)
+
+
+def _release_stops(held: set[signal.Signals] | None) -> None:
+    """Restore the mask :func:`_hold_stops` changed; a stop held back meanwhile arrives now."""
+    if held is not None:
+        signal.pthread_sigmask(signal.SIG_SETMASK, held)
