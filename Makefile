@@ -15,7 +15,7 @@ GRAIN_GROWTH ?= tests/data/evolver/grain3d
 
 all: lint test
 
-$(STAMP): pyproject.toml
+$(STAMP): pyproject.toml setup.py src/grainclass/_voro.cpp
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --disable-pip-version-check -e '.[test]'
 	# plantri, shipped inside passagemath-plantri's package, beside the venv's other commands.

@@ -1,0 +1,312 @@
+// grainclass._voro: Voronoi and Laguerre cells of points, as flat arrays, from Voro++.
+//
+// A Tessellation holds the points in one Voro++ container per thread (Voro++'s containers keep
+// scratch state while they compute a cell, so threads do not share one). cells(indices)
+// computes the cells of those points on every thread at once, without the GIL, and hands back
+// per cell the faces across each edge of each face (the face adjacency, in the order of the
+// face's loop), the point behind each face (a negative number: the wall of a non-periodic
+// side), its volume, its surface area and flags.
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <cstring>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <thread>
+#include <vector>
+
+#include "voro++.hh"
+
+namespace py = pybind11;
+
+namespace {
+
+// What the cells of a run of points come to: CSR arrays, one entry per cell, per face and per
+// corner of a face.
+// Flags per cell.
+constexpr int8_t BAD_CORNER = 1;  // a corner not on exactly three faces
+constexpr int8_t OPEN = 2;        // an edge not on exactly two faces
+constexpr int8_t WALL = 4;        // a face on a wall of the box
+
+// What the cells of a run of points come to: CSR arrays, one entry per cell, per face and per
+// edge of a face.
+struct Cells {
+    std::vector<int32_t> face_counts;   // per cell; 0 where the point has no cell
+    std::vector<int32_t> loop_lengths;  // per face: its edges
+    std::vector<int32_t> adjacent;      // per edge of a face: the cell's face across it
+    std::vector<int64_t> neighbors;     // per face: the point behind it, or a wall (< 0)
+    std::vector<double> volume;         // per cell
+    std::vector<double> area;           // per cell
+    std::vector<int8_t> flags;          // per cell
+
+    void append(Cells &&other) {
+        auto move = [](auto &to, auto &from) { to.insert(to.end(), from.begin(), from.end()); };
+        move(face_counts, other.face_counts);
+        move(loop_lengths, other.loop_lengths);
+        move(adjacent, other.adjacent);
+        move(neighbors, other.neighbors);
+        move(volume, other.volume);
+        move(area, other.area);
+        move(flags, other.flags);
+    }
+};
+
+template <class T>
+py::array_t<T> to_array(const std::vector<T> &values) {
+    py::array_t<T> out(static_cast<py::ssize_t>(values.size()));
+    if (!values.empty()) std::memcpy(out.mutable_data(), values.data(), values.size() * sizeof(T));
+    return out;
+}
+
+// The same computation for Voronoi (voro::container) and Laguerre (voro::container_poly) cells.
+template <class Container>
+class Engine {
+  public:
+    Engine(const double *xyz, const double *radii, int64_t n, std::array<double, 6> box,
+           std::array<bool, 3> periodic, std::array<int, 3> blocks, int copies)
+        : block_(n, -1), slot_(n, -1),
+          listed_(copies, std::vector<uint64_t>(n)), listed_back_(copies, std::vector<uint64_t>(n)) {
+        for (int k = 0; k < copies; ++k) {
+            containers_.emplace_back(std::make_unique<Container>(
+                box[0], box[1], box[2], box[3], box[4], box[5], blocks[0], blocks[1], blocks[2],
+                periodic[0], periodic[1], periodic[2], 8));
+            Container &con = *containers_.back();
+            for (int64_t i = 0; i < n; ++i) put(con, static_cast<int>(i), xyz + 3 * i, radii);
+        }
+        Container &con = *containers_.front();
+        for (int ijk = 0; ijk < con.nxyz; ++ijk) {
+            for (int q = 0; q < con.co[ijk]; ++q) {
+                block_[con.id[ijk][q]] = ijk;
+                slot_[con.id[ijk][q]] = q;
+            }
+        }
+    }
+
+    // Which points Voro++ placed (a point outside a non-periodic side is not placed).
+    std::vector<bool> placed() const {
+        std::vector<bool> out(block_.size());
+        for (size_t i = 0; i < block_.size(); ++i) out[i] = block_[i] >= 0;
+        return out;
+    }
+
+    // The points whose cells list a face that the cell behind it does not list back (of the
+    // cells computed so far: meaningful once every cell is).
+    std::vector<int64_t> one_sided() const {
+        std::vector<int64_t> out;
+        for (size_t i = 0; i < block_.size(); ++i) {
+            uint64_t a = 0, b = 0;
+            for (size_t t = 0; t < listed_.size(); ++t) {
+                a += listed_[t][i];
+                b += listed_back_[t][i];
+            }
+            if (a != b) out.push_back(static_cast<int64_t>(i));
+        }
+        return out;
+    }
+
+    Cells cells(const int64_t *indices, int64_t count) {
+        const int threads = static_cast<int>(containers_.size());
+        std::vector<Cells> parts(threads);
+        std::vector<std::thread> workers;
+        for (int t = 0; t < threads; ++t) {
+            const int64_t first = count * t / threads, last = count * (t + 1) / threads;
+            workers.emplace_back([this, t, indices, first, last, &parts] {
+                parts[t] = compute(*containers_[t], indices + first, last - first, t);
+            });
+        }
+        for (auto &worker : workers) worker.join();
+        Cells all = std::move(parts[0]);
+        for (int t = 1; t < threads; ++t) all.append(std::move(parts[t]));
+        return all;
+    }
+
+  private:
+    std::vector<std::unique_ptr<Container>> containers_;
+    std::vector<int> block_, slot_;
+    // Per thread and point: the sum of mix(q) over the faces the point's cell lists (q behind
+    // the face), and over the faces other cells list with the point behind them.
+    std::vector<std::vector<uint64_t>> listed_, listed_back_;
+
+    static void put(voro::container &con, int i, const double *p, const double *) {
+        con.put(i, p[0], p[1], p[2]);
+    }
+    static void put(voro::container_poly &con, int i, const double *p, const double *radii) {
+        con.put(i, p[0], p[1], p[2], radii[i]);
+    }
+
+    Cells compute(Container &con, const int64_t *indices, int64_t count, int thread) {
+        Cells out;
+        out.face_counts.reserve(count);
+        out.volume.reserve(count);
+        out.area.reserve(count);
+        out.flags.reserve(count);
+        voro::voronoicell_neighbor cell(con);
+        std::vector<int> neighbors, loops;
+        std::vector<int32_t> face_of_edge;  // directed edge u -> v of a loop: its face
+        std::vector<int32_t> faces_at;      // per corner: the faces around it
+        uint64_t *listed = listed_[thread].data(), *listed_back = listed_back_[thread].data();
+        for (int64_t k = 0; k < count; ++k) {
+            const int64_t i = indices[k];
+            if (block_[i] < 0 || !con.compute_cell(cell, block_[i], slot_[i])) {
+                out.face_counts.push_back(0);
+                out.volume.push_back(0.0);
+                out.area.push_back(0.0);
+                out.flags.push_back(0);
+                continue;
+            }
+            cell.neighbors(neighbors);
+            cell.face_vertices(loops);  // per face: its corner count, then its corners
+            const int corners = cell.p;
+            face_of_edge.assign(static_cast<size_t>(corners) * corners, -1);
+            faces_at.assign(corners, 0);
+            int8_t flag = 0;
+            int32_t f = 0;
+            for (size_t j = 0; j < loops.size(); j += loops[j] + 1, ++f) {
+                const int length = loops[j];
+                for (int e = 0; e < length; ++e) {
+                    const int u = loops[j + 1 + e], v = loops[j + 1 + (e + 1) % length];
+                    face_of_edge[static_cast<size_t>(u) * corners + v] = f;
+                    ++faces_at[u];
+                }
+            }
+            f = 0;
+            for (size_t j = 0; j < loops.size(); j += loops[j] + 1, ++f) {
+                const int length = loops[j];
+                out.loop_lengths.push_back(length);
+                for (int e = 0; e < length; ++e) {
+                    const int u = loops[j + 1 + e], v = loops[j + 1 + (e + 1) % length];
+                    const int32_t other = face_of_edge[static_cast<size_t>(v) * corners + u];
+                    if (other < 0 || other == f) flag |= OPEN;
+                    out.adjacent.push_back(other);
+                }
+            }
+            for (int u = 0; u < corners; ++u)
+                if (faces_at[u] != 3) flag |= BAD_CORNER;
+            const uint64_t self = mix(static_cast<uint64_t>(i));
+            for (int n : neighbors) {
+                if (n < 0) {
+                    flag |= WALL;
+                } else {
+                    listed[i] += mix(static_cast<uint64_t>(n));
+                    listed_back[n] += self;
+                }
+            }
+            out.face_counts.push_back(static_cast<int32_t>(neighbors.size()));
+            out.neighbors.insert(out.neighbors.end(), neighbors.begin(), neighbors.end());
+            out.volume.push_back(cell.volume());
+            out.area.push_back(cell.surface_area());
+            out.flags.push_back(flag);
+        }
+        return out;
+    }
+
+    // A 64-bit mix of a point index (splitmix64's finalizer): sums of mixed ids over a cell's
+    // faces agree both ways round when every face is listed by both of its cells.
+    static uint64_t mix(uint64_t x) {
+        x += 0x9e3779b97f4a7c15ULL;
+        x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
+        x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
+        return x ^ (x >> 31);
+    }
+};
+
+class Tessellation {
+  public:
+    Tessellation(py::array_t<double, py::array::c_style | py::array::forcecast> points,
+                 std::optional<py::array_t<double, py::array::c_style | py::array::forcecast>> radii,
+                 std::array<double, 6> box, std::array<bool, 3> periodic,
+                 std::array<int, 3> blocks, int threads) {
+        if (points.ndim() != 2 || points.shape(1) != 3)
+            throw std::invalid_argument("points must be an array of shape (n, 3)");
+        const int64_t n = points.shape(0);
+        if (n >= INT32_MAX) throw std::invalid_argument("too many points for Voro++'s int ids");
+        if (radii && (radii->ndim() != 1 || radii->shape(0) != n))
+            throw std::invalid_argument("radii must be an array of shape (n,)");
+        if (threads < 1) throw std::invalid_argument("threads must be at least 1");
+        for (int a = 0; a < 3; ++a) {
+            if (!(box[2 * a] < box[2 * a + 1]))
+                throw std::invalid_argument("each side of the box must have low < high");
+            if (blocks[a] < 1) throw std::invalid_argument("blocks must be at least 1");
+        }
+        n_ = n;
+        const double *xyz = points.data();
+        const double *r = radii ? radii->data() : nullptr;
+        py::gil_scoped_release release;
+        if (r)
+            poly_ = std::make_unique<Engine<voro::container_poly>>(xyz, r, n, box, periodic,
+                                                                   blocks, threads);
+        else
+            mono_ = std::make_unique<Engine<voro::container>>(xyz, r, n, box, periodic, blocks,
+                                                              threads);
+    }
+
+    py::array_t<int64_t> one_sided() const {
+        return to_array(mono_ ? mono_->one_sided() : poly_->one_sided());
+    }
+
+    py::array_t<bool> placed() const {
+        std::vector<bool> flags = mono_ ? mono_->placed() : poly_->placed();
+        py::array_t<bool> out(static_cast<py::ssize_t>(flags.size()));
+        bool *data = out.mutable_data();
+        for (size_t i = 0; i < flags.size(); ++i) data[i] = flags[i];
+        return out;
+    }
+
+    py::dict cells(py::array_t<int64_t, py::array::c_style | py::array::forcecast> indices) {
+        if (indices.ndim() != 1) throw std::invalid_argument("indices must be one-dimensional");
+        const int64_t *idx = indices.data();
+        for (py::ssize_t k = 0; k < indices.shape(0); ++k)
+            if (idx[k] < 0 || idx[k] >= n_) throw std::out_of_range("a point index is out of range");
+        Cells out;
+        {
+            py::gil_scoped_release release;
+            out = mono_ ? mono_->cells(idx, indices.shape(0)) : poly_->cells(idx, indices.shape(0));
+        }
+        py::dict result;
+        result["face_counts"] = to_array(out.face_counts);
+        result["loop_lengths"] = to_array(out.loop_lengths);
+        result["adjacent"] = to_array(out.adjacent);
+        result["neighbors"] = to_array(out.neighbors);
+        result["volume"] = to_array(out.volume);
+        result["area"] = to_array(out.area);
+        result["flags"] = to_array(out.flags);
+        return result;
+    }
+
+  private:
+    int64_t n_ = 0;
+    std::unique_ptr<Engine<voro::container>> mono_;
+    std::unique_ptr<Engine<voro::container_poly>> poly_;
+};
+
+}  // namespace
+
+PYBIND11_MODULE(_voro, m) {
+    m.doc() = "Voronoi and Laguerre cells of points, as flat arrays, from Voro++.";
+    py::class_<Tessellation>(m, "Tessellation")
+        .def(py::init<py::array_t<double, py::array::c_style | py::array::forcecast>,
+                      std::optional<py::array_t<double, py::array::c_style | py::array::forcecast>>,
+                      std::array<double, 6>, std::array<bool, 3>, std::array<int, 3>, int>(),
+             py::arg("points"), py::arg("radii"), py::arg("box"), py::arg("periodic"),
+             py::arg("blocks"), py::arg("threads"),
+             "Points (n, 3) in a box (xlo, xhi, ylo, yhi, zlo, zhi), periodic per axis, cut "
+             "into blocks per axis for Voro++'s search; radii (n,) or None; one container per "
+             "thread.")
+        .def("placed", &Tessellation::placed,
+             "Per point: True where Voro++ placed it in the box.")
+        .def("one_sided", &Tessellation::one_sided,
+             "The points whose cells list a face that the cell behind it does not list back "
+             "(once every cell is computed).")
+        .def("cells", &Tessellation::cells, py::arg("indices"),
+             "The cells of the points at these indices, on every thread, as a dict of arrays: "
+             "face_counts, volume, area and flags (1: a corner not of three faces, 2: an edge not "
+             "on two faces, 4: a face on a wall) per cell (0 faces: no cell), loop_lengths and "
+             "neighbors (the point behind, negative for a wall) per face, adjacent (the face "
+             "across each edge, in loop order) per edge of a face.");
+}
