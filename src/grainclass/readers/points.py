@@ -201,13 +201,16 @@ def _ids(values: np.ndarray, source: str, numbers: np.ndarray, what: str) -> np.
 def _read_voro(lines: list[str], source: str, radius_column: str | None) -> Points:
     """Voro++'s input: ``id x y z`` or ``id x y z r`` per line, the same on every line."""
     first = next((line.split() for line in lines if line.strip()), [])
+    if not first:
+        empty = np.empty(0, np.int64)
+        return Points(np.empty((0, 3)), empty, empty, source, "line")
     with_radius = len(first) == 5
     if len(first) not in (4, 5):
-        numbers = next(k + 1 for k, line in enumerate(lines) if line.strip()) if first else None
+        number = next(k + 1 for k, line in enumerate(lines) if line.strip())
         raise InputError(
             source,
             f"cannot read this point: expected id x y z [r], found {len(first)} values",
-            numbers,
+            number,
         )
     columns = {"id": 0, "x": 1, "y": 2, "z": 3} | ({"r": 4} if with_radius else {})
     table, numbers = _table(lines, 1, columns, source, "point")
