@@ -11,7 +11,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
-#include <algorithm>
+#include <cmath>
 #include <array>
 #include <cstdint>
 #include <cstring>
@@ -54,6 +54,79 @@ struct Cells {
         move(volume, other.volume);
         move(area, other.area);
         move(flags, other.flags);
+    }
+};
+
+// A Voro++ cell whose faces, neighbours, volume and area come from one walk over its edges
+// (Voro++'s face_vertices, neighbors, volume and surface_area each walk them once; the walk and
+// the sums are theirs, in their order).
+class FlatCell : public voro::voronoicell_neighbor {
+  public:
+    template <class Container>
+    explicit FlatCell(Container &con) : voro::voronoicell_neighbor(con) {}
+
+    // Appends per face its corner count and corners to ``loops`` and the point behind it to
+    // ``neighbors``; sets the volume and the surface area. False if an edge was not walked (the
+    // edges do not close into faces).
+    bool walk(std::vector<int> &loops, std::vector<int> &neighbors, double &volume,
+              double &area) {
+        loops.clear();
+        neighbors.clear();
+        double vol = 0.0, twice_area = 0.0;
+        const double *q = pts;  // corners relative to the point, doubled, four numbers each
+        for (int i = 1; i < p; ++i) {
+            const double ux = q[0] - q[4 * i], uy = q[1] - q[4 * i + 1], uz = q[2] - q[4 * i + 2];
+            for (int j = 0; j < nu[i]; ++j) {
+                int k = ed[i][j];
+                if (k < 0) continue;
+                neighbors.push_back(ne[i][j]);
+                const size_t start = loops.size();
+                loops.push_back(0);
+                loops.push_back(i);
+                ed[i][j] = -1 - k;
+                int l = cycle_up(ed[i][nu[i] + j], k);
+                double vx = q[4 * k] - q[0], vy = q[4 * k + 1] - q[1], vz = q[4 * k + 2] - q[2];
+                int m;
+                do {
+                    loops.push_back(k);
+                    m = ed[k][l];
+                    ed[k][l] = -1 - m;
+                    const int n = cycle_up(ed[k][nu[k] + l], m);
+                    if (m != i) {
+                        const double wx = q[4 * m] - q[0], wy = q[4 * m + 1] - q[1],
+                                     wz = q[4 * m + 2] - q[2];
+                        vol += ux * vy * wz + uy * vz * wx + uz * vx * wy - uz * vy * wx -
+                               uy * vx * wz - ux * vz * wy;
+                        // The triangle (i, k, m) of the fan from corner i.
+                        const double ax = q[4 * k] - q[4 * i], ay = q[4 * k + 1] - q[4 * i + 1],
+                                     az = q[4 * k + 2] - q[4 * i + 2];
+                        const double bx = q[4 * m] - q[4 * i], by = q[4 * m + 1] - q[4 * i + 1],
+                                     bz = q[4 * m + 2] - q[4 * i + 2];
+                        const double cx = ay * bz - az * by, cy = az * bx - ax * bz,
+                                     cz = ax * by - ay * bx;
+                        twice_area += std::sqrt(cx * cx + cy * cy + cz * cz);
+                        vx = wx;
+                        vy = wy;
+                        vz = wz;
+                    }
+                    k = m;
+                    l = n;
+                } while (k != i);
+                loops[start] = static_cast<int>(loops.size() - start - 1);
+            }
+        }
+        volume = vol / 48.0;
+        area = 0.125 * twice_area;
+        bool whole = true;  // every edge walked: marked -1 - k; marked back as Voro++ does
+        for (int i = 0; i < p; ++i) {
+            for (int j = 0; j < nu[i]; ++j) {
+                if (ed[i][j] >= 0)
+                    whole = false;
+                else
+                    ed[i][j] = -1 - ed[i][j];
+            }
+        }
+        return whole;
     }
 };
 
@@ -146,26 +219,28 @@ class Engine {
         out.volume.reserve(count);
         out.area.reserve(count);
         out.flags.reserve(count);
-        voro::voronoicell_neighbor cell(con);
+        FlatCell cell(con);
         std::vector<int> neighbors, loops;
+        double volume, area;
         std::vector<int32_t> face_of_edge;  // directed edge u -> v of a loop: its face
         std::vector<int32_t> faces_at;      // per corner: the faces around it
         uint64_t *listed = listed_[thread].data(), *listed_back = listed_back_[thread].data();
         for (int64_t k = 0; k < count; ++k) {
             const int64_t i = indices[k];
-            if (block_[i] < 0 || !con.compute_cell(cell, block_[i], slot_[i])) {
+            if (block_[i] < 0 ||
+                !con.compute_cell(static_cast<voro::voronoicell_neighbor &>(cell), block_[i],
+                                  slot_[i])) {
                 out.face_counts.push_back(0);
                 out.volume.push_back(0.0);
                 out.area.push_back(0.0);
                 out.flags.push_back(0);
                 continue;
             }
-            cell.neighbors(neighbors);
-            cell.face_vertices(loops);  // per face: its corner count, then its corners
+            // loops: per face its corner count, then its corners
+            int8_t flag = cell.walk(loops, neighbors, volume, area) ? 0 : OPEN;
             const int corners = cell.p;
             face_of_edge.assign(static_cast<size_t>(corners) * corners, -1);
             faces_at.assign(corners, 0);
-            int8_t flag = 0;
             int32_t f = 0;
             for (size_t j = 0; j < loops.size(); j += loops[j] + 1, ++f) {
                 const int length = loops[j];
@@ -199,8 +274,8 @@ class Engine {
             }
             out.face_counts.push_back(static_cast<int32_t>(neighbors.size()));
             out.neighbors.insert(out.neighbors.end(), neighbors.begin(), neighbors.end());
-            out.volume.push_back(cell.volume());
-            out.area.push_back(cell.surface_area());
+            out.volume.push_back(volume);
+            out.area.push_back(area);
             out.flags.push_back(flag);
         }
         return out;

@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterator
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -278,20 +279,28 @@ def tessellate(
         min(get_jobs(), max(1, n // 1000)),
     )
     order = np.arange(n) if ordered else block_order(points.xyz, box)
-    for a in range(0, n, chunk_size):
-        batch = _batch(points, order[a : a + chunk_size], engine, scale, report)
-        if len(batch):
-            yield batch
+    chunks = [order[a : a + chunk_size] for a in range(0, n, chunk_size)]
+    # The next chunk's cells are computed (without the GIL) while this chunk's grains are
+    # classified and written: one engine call at a time, one chunk ahead.
+    with ThreadPoolExecutor(1, thread_name_prefix="grainclass-voro") as ahead:
+        pending = ahead.submit(engine.cells, chunks[0])
+        for k, cells in enumerate(chunks):
+            raw = pending.result()
+            if k + 1 < len(chunks):
+                pending = ahead.submit(engine.cells, chunks[k + 1])
+            batch = _batch(points, cells, raw, scale, report)
+            if len(batch):
+                yield batch
     report.one_sided_faces += len(engine.one_sided())
 
 
 def _batch(
-    points: Points, cells: np.ndarray, engine, scale: float, report: VoronoiReport
+    points: Points, cells: np.ndarray, raw: dict, scale: float, report: VoronoiReport
 ) -> GrainBatch:
-    """The grains of the points ``cells`` (indices into ``points``), from the engine."""
+    """The grains of the points ``cells`` (indices into ``points``), from the engine's arrays
+    ``raw`` for them."""
     from grainclass.arrow import decimal_strings
 
-    raw = engine.cells(cells)
     face_counts = raw["face_counts"].astype(np.int64)
     has_cell = face_counts > 0
     if not has_cell.all():

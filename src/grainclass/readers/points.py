@@ -113,33 +113,38 @@ def _table(
     source: str,
     what: str,
     sep: str | None = None,
+    exact: bool = False,
 ) -> tuple[dict[str, np.ndarray], np.ndarray]:
     """Numbers separated by ``sep`` (None: by blanks): the ``columns`` (name: column index) of
     the non-blank lines of ``lines`` (the first is line ``first_line`` of the file), as
     float64, and the line number of each row. A row too short, or a value that is not a
-    number, names its line."""
+    number, names its line. With ``exact``, every row must hold just the ``columns``."""
     import pandas as pd
 
-    numbers = np.asarray([first_line + k for k, line in enumerate(lines) if line.strip()])
-    rows = [lines[n - first_line] for n in numbers]
+    blank = [not line.strip() for line in lines]
+    if any(blank):
+        numbers = first_line + np.flatnonzero(~np.asarray(blank))
+        rows = [lines[n - first_line] for n in numbers]
+    else:
+        numbers, rows = first_line + np.arange(len(lines)), lines
     width = max(columns.values()) + 1
     try:
         frame = pd.read_csv(
             io.StringIO("\n".join(rows)),
             sep=sep or r"\s+",
             header=None,
-            usecols=sorted(set(columns.values())),
+            usecols=None if exact else sorted(set(columns.values())),
             dtype=np.float64,
             engine="c",
         )
-        if len(frame) != len(rows):
-            raise ValueError("rows lost")
+        if len(frame) != len(rows) or (exact and frame.shape[1] != width):
+            raise ValueError("rows lost, or a row too long")
         out = {name: frame[column].to_numpy(np.float64) for name, column in columns.items()}
     except (ValueError, pd.errors.ParserError):
-        _first_bad_row(rows, numbers, columns, width, source, what, sep)
+        _first_bad_row(rows, numbers, columns, width, source, what, sep, exact)
         raise InputError(source, f"cannot read the {what}s") from None
     if any(np.isnan(values).any() for values in out.values()):  # a short row pandas filled
-        _first_bad_row(rows, numbers, columns, width, source, what, sep)
+        _first_bad_row(rows, numbers, columns, width, source, what, sep, exact)
     return out, numbers.astype(np.int64)
 
 
@@ -151,11 +156,13 @@ def _first_bad_row(
     source: str,
     what: str,
     sep: str | None,
+    exact: bool = False,
 ) -> None:
-    """Raise the InputError of the first row that is too short or holds a word for a number."""
+    """Raise the InputError of the first row that is too short (or, ``exact``, too long) or
+    holds a word for a number."""
     for row, number in zip(rows, numbers, strict=True):
         fields = row.split(sep)
-        if len(fields) < width:
+        if len(fields) < width or (exact and len(fields) != width):
             raise InputError(
                 source,
                 f"cannot read this {what}: expected {width} values, found {len(fields)}",
@@ -213,16 +220,7 @@ def _read_voro(lines: list[str], source: str, radius_column: str | None) -> Poin
             number,
         )
     columns = {"id": 0, "x": 1, "y": 2, "z": 3} | ({"r": 4} if with_radius else {})
-    table, numbers = _table(lines, 1, columns, source, "point")
-    lengths = [len(lines[n - 1].split()) for n in numbers]
-    wrong = np.flatnonzero(np.asarray(lengths) != len(first))
-    if len(wrong):
-        raise InputError(
-            source,
-            f"cannot read this point: expected {len(first)} values as on the first line, "
-            f"found {lengths[wrong[0]]}",
-            int(numbers[wrong[0]]),
-        )
+    table, numbers = _table(lines, 1, columns, source, "point", exact=True)
     return Points(
         np.column_stack([table["x"], table["y"], table["z"]]),
         _ids(table["id"], source, numbers, "point"),
