@@ -209,10 +209,12 @@ def test_bad_points_exit_1_with_file_and_line_and_no_output(tmp_path, text, args
     assert message in _refused(tmp_path, text, *args)
 
 
-def test_a_triclinic_dump_is_refused_for_what_it_is(tmp_path):
-    dump = "ITEM: NUMBER OF ATOMS\n1\nITEM: BOX BOUNDS xy xz yz pp pp pp\n0 1 0\n0 1 0\n0 1 0\n"
+def test_an_unreadable_box_names_its_line(tmp_path):
+    dump = "ITEM: NUMBER OF ATOMS\n1\nITEM: BOX BOUNDS xy xz yz pp pp pp\n0 1 0\n0 1\n0 1 0\n"
     dump += "ITEM: ATOMS id x y z\n1 0.5 0.5 0.5\n"
-    assert "FILE:3: a triclinic box" in _refused(tmp_path, dump, name="p.dump")
+    assert "FILE:5: cannot read the box: expected low high tilt" in _refused(
+        tmp_path, dump, name="p.dump"
+    )
 
 
 def test_laguerre_points_without_a_cell_are_named(tmp_path):
@@ -232,3 +234,64 @@ def test_voro_reader_marks_cells_with_a_wall_face_as_boundary():
     inner = table.filter(pc.invert(table["boundary"]))
     # Cells away from the walls are whole Poisson-Voronoi cells (about 15.5 faces, not 13).
     assert pc.mean(inner["n_faces"]).as_py() > 14
+
+
+def _tilted_dump(path: Path, xyz: np.ndarray, tilt: tuple[float, float, float], radii=None):
+    """A LAMMPS dump of points in the tilted box from 0 with sides 1 and tilts xy, xz, yz."""
+    xy, xz, yz = tilt
+    radius = " radius" if radii is not None else ""
+    lines = [
+        "ITEM: TIMESTEP",
+        "0",
+        "ITEM: NUMBER OF ATOMS",
+        str(len(xyz)),
+        "ITEM: BOX BOUNDS xy xz yz pp pp pp",
+        f"{min(0, xy, xz, xy + xz)} {1 + max(0, xy, xz, xy + xz)} {xy}",
+        f"{min(0, yz)} {1 + max(0, yz)} {xz}",
+        f"0 1 {yz}",
+        f"ITEM: ATOMS id x y z{radius}",
+    ]
+    for i, point in enumerate(xyz.tolist()):
+        extra = f" {float(radii[i])!r}" if radii is not None else ""
+        lines.append(f"{i} {point[0]!r} {point[1]!r} {point[2]!r}{extra}")
+    path.write_text("\n".join(lines) + "\n")
+    return path
+
+
+@pytest.mark.parametrize("with_radii", [False, True])
+def test_a_tilted_box_of_the_same_lattice_gives_the_same_cells(tmp_path, with_radii):
+    """Edges (1, 0, 0), (1, 1, 0), (1, 1, 1) span the unit cube's lattice: the same points, in
+    either box, have the same periodic cells."""
+    rng = np.random.default_rng(6)
+    xyz = rng.random((300, 3))
+    radii = rng.uniform(0.0, 0.05, 300) if with_radii else None
+    cube = _ours(tmp_path, "--points", str(_voro_points(tmp_path / "cube", xyz, radii)))
+    tilted = _ours(
+        tmp_path, "--points", str(_tilted_dump(tmp_path / "t.dump", xyz, (1, 1, 1), radii))
+    )
+    assert cube.select(KEYS).equals(tilted.select(KEYS))
+    np.testing.assert_allclose(tilted["volume"].to_numpy(), cube["volume"].to_numpy(), rtol=1e-9)
+
+
+def test_a_tilted_box_with_walls_is_refused(tmp_path):
+    elsewhere = tmp_path / "elsewhere"
+    elsewhere.mkdir()
+    dump = _tilted_dump(elsewhere / "t.dump", np.full((1, 3), 0.5), (0.5, 0, 0)).read_text()
+    dump = dump.replace("pp pp pp", "pp pp ff")
+    shutil.rmtree(elsewhere)
+    message = _refused(tmp_path, dump, name="p.dump")
+    assert "FILE:5: a tilted box with walls" in message
+
+
+def test_bcc_points_in_a_tilted_box_give_truncated_octahedra(tmp_path):
+    # Edges (2, 0, 0), (1, 2, 0), (0, 1, 2) are translations of the BCC lattice of side 1.
+    points = _lattice([(0, 0, 0), (0.5, 0.5, 0.5)], 7) - 3 + 0.1
+    matrix = np.array([[2.0, 1.0, 0.0], [0.0, 2.0, 1.0], [0.0, 0.0, 2.0]])
+    fractions = np.linalg.solve(matrix, points.T).T
+    inside = points[((fractions >= 0) & (fractions < 1)).all(axis=1)] / 2
+    dump = _tilted_dump(tmp_path / "bcc.dump", inside, (0.5, 0.0, 0.5))
+    table = _ours(tmp_path, "--points", str(dump))
+    assert len(table) == 16
+    assert set(table["n_faces"].to_pylist()) == {14}
+    assert set(table["symmetry"].to_pylist()) == {48}
+    np.testing.assert_allclose(table["volume"].to_numpy(), 1 / 16)

@@ -19,6 +19,7 @@
 #include <optional>
 #include <stdexcept>
 #include <thread>
+#include <type_traits>
 #include <vector>
 
 #include "voro++.hh"
@@ -137,32 +138,63 @@ py::array_t<T> to_array(const std::vector<T> &values) {
     return out;
 }
 
-// The same computation for Voronoi (voro::container) and Laguerre (voro::container_poly) cells.
-template <class Container>
-class Engine {
+class EngineBase {
   public:
-    Engine(const double *xyz, const double *radii, int64_t n, std::array<double, 6> box,
-           std::array<bool, 3> periodic, std::array<int, 3> blocks, int copies)
+    virtual ~EngineBase() = default;
+    virtual std::vector<bool> placed() const = 0;
+    virtual std::vector<int64_t> one_sided() const = 0;
+    virtual Cells cells(const int64_t *indices, int64_t count) = 0;
+};
+
+// The box as Voro++ takes it: its sides, periodic or walled, or a tilted (triclinic) box,
+// periodic on every side, with its tilts.
+struct Geometry {
+    std::array<double, 6> box;
+    std::array<bool, 3> periodic;
+    std::array<int, 3> blocks;
+    std::optional<std::array<double, 3>> tilt;  // xy, xz, yz
+};
+
+template <class Container>
+std::unique_ptr<Container> make_container(const Geometry &g) {
+    if constexpr (std::is_base_of_v<voro::container_periodic_base, Container>) {
+        const auto &t = *g.tilt;
+        return std::make_unique<Container>(g.box[1] - g.box[0], t[0], g.box[3] - g.box[2], t[1],
+                                           t[2], g.box[5] - g.box[4], g.blocks[0], g.blocks[1],
+                                           g.blocks[2], 8);
+    } else {
+        return std::make_unique<Container>(g.box[0], g.box[1], g.box[2], g.box[3], g.box[4],
+                                           g.box[5], g.blocks[0], g.blocks[1], g.blocks[2],
+                                           g.periodic[0], g.periodic[1], g.periodic[2], 8);
+    }
+}
+
+// The same computation for Voronoi (voro::container, voro::container_periodic) and Laguerre
+// (voro::container_poly, voro::container_periodic_poly) cells. Loop visits the points Voro++
+// placed (c_loop_all, or c_loop_all_periodic for a tilted box).
+template <class Container, class Loop>
+class Engine : public EngineBase {
+  public:
+    Engine(const double *xyz, const double *radii, int64_t n, const Geometry &geometry,
+           int copies)
         : block_(n, -1), slot_(n, -1),
           listed_(copies, std::vector<uint64_t>(n)), listed_back_(copies, std::vector<uint64_t>(n)) {
         for (int k = 0; k < copies; ++k) {
-            containers_.emplace_back(std::make_unique<Container>(
-                box[0], box[1], box[2], box[3], box[4], box[5], blocks[0], blocks[1], blocks[2],
-                periodic[0], periodic[1], periodic[2], 8));
+            containers_.emplace_back(make_container<Container>(geometry));
             Container &con = *containers_.back();
             for (int64_t i = 0; i < n; ++i) put(con, static_cast<int>(i), xyz + 3 * i, radii);
         }
-        Container &con = *containers_.front();
-        for (int ijk = 0; ijk < con.nxyz; ++ijk) {
-            for (int q = 0; q < con.co[ijk]; ++q) {
-                block_[con.id[ijk][q]] = ijk;
-                slot_[con.id[ijk][q]] = q;
-            }
+        Loop loop(*containers_.front());
+        if (loop.start()) {
+            do {
+                block_[loop.pid()] = loop.ijk;
+                slot_[loop.pid()] = loop.q;
+            } while (loop.inc());
         }
     }
 
     // Which points Voro++ placed (a point outside a non-periodic side is not placed).
-    std::vector<bool> placed() const {
+    std::vector<bool> placed() const override {
         std::vector<bool> out(block_.size());
         for (size_t i = 0; i < block_.size(); ++i) out[i] = block_[i] >= 0;
         return out;
@@ -170,7 +202,7 @@ class Engine {
 
     // The points whose cells list a face that the cell behind it does not list back (of the
     // cells computed so far: meaningful once every cell is).
-    std::vector<int64_t> one_sided() const {
+    std::vector<int64_t> one_sided() const override {
         std::vector<int64_t> out;
         for (size_t i = 0; i < block_.size(); ++i) {
             uint64_t a = 0, b = 0;
@@ -183,7 +215,7 @@ class Engine {
         return out;
     }
 
-    Cells cells(const int64_t *indices, int64_t count) {
+    Cells cells(const int64_t *indices, int64_t count) override {
         const int threads = static_cast<int>(containers_.size());
         std::vector<Cells> parts(threads);
         std::vector<std::thread> workers;
@@ -206,11 +238,11 @@ class Engine {
     // the face), and over the faces other cells list with the point behind them.
     std::vector<std::vector<uint64_t>> listed_, listed_back_;
 
-    static void put(voro::container &con, int i, const double *p, const double *) {
-        con.put(i, p[0], p[1], p[2]);
-    }
-    static void put(voro::container_poly &con, int i, const double *p, const double *radii) {
-        con.put(i, p[0], p[1], p[2], radii[i]);
+    static void put(Container &con, int i, const double *p, const double *radii) {
+        if constexpr (std::is_base_of_v<voro::radius_poly, Container>)
+            con.put(i, p[0], p[1], p[2], radii[i]);
+        else
+            con.put(i, p[0], p[1], p[2]);
     }
 
     Cells compute(Container &con, const int64_t *indices, int64_t count, int thread) {
@@ -293,10 +325,11 @@ class Engine {
 
 class Tessellation {
   public:
-    Tessellation(py::array_t<double, py::array::c_style | py::array::forcecast> points,
-                 std::optional<py::array_t<double, py::array::c_style | py::array::forcecast>> radii,
-                 std::array<double, 6> box, std::array<bool, 3> periodic,
-                 std::array<int, 3> blocks, int threads) {
+    using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
+    Tessellation(Array points, std::optional<Array> radii, std::array<double, 6> box,
+                 std::array<bool, 3> periodic, std::array<int, 3> blocks, int threads,
+                 std::optional<std::array<double, 3>> tilt) {
         if (points.ndim() != 2 || points.shape(1) != 3)
             throw std::invalid_argument("points must be an array of shape (n, 3)");
         const int64_t n = points.shape(0);
@@ -309,24 +342,34 @@ class Tessellation {
                 throw std::invalid_argument("each side of the box must have low < high");
             if (blocks[a] < 1) throw std::invalid_argument("blocks must be at least 1");
         }
+        if (tilt && (box[0] != 0 || box[2] != 0 || box[4] != 0 || !periodic[0] ||
+                     !periodic[1] || !periodic[2]))
+            throw std::invalid_argument("a tilted box starts at 0 and is periodic on every side");
         n_ = n;
         const double *xyz = points.data();
         const double *r = radii ? radii->data() : nullptr;
+        const Geometry geometry{box, periodic, blocks, tilt};
         py::gil_scoped_release release;
-        if (r)
-            poly_ = std::make_unique<Engine<voro::container_poly>>(xyz, r, n, box, periodic,
-                                                                   blocks, threads);
+        if (tilt && r)
+            engine_ = std::make_unique<
+                Engine<voro::container_periodic_poly, voro::c_loop_all_periodic>>(
+                xyz, r, n, geometry, threads);
+        else if (tilt)
+            engine_ =
+                std::make_unique<Engine<voro::container_periodic, voro::c_loop_all_periodic>>(
+                    xyz, r, n, geometry, threads);
+        else if (r)
+            engine_ = std::make_unique<Engine<voro::container_poly, voro::c_loop_all>>(
+                xyz, r, n, geometry, threads);
         else
-            mono_ = std::make_unique<Engine<voro::container>>(xyz, r, n, box, periodic, blocks,
-                                                              threads);
+            engine_ = std::make_unique<Engine<voro::container, voro::c_loop_all>>(
+                xyz, r, n, geometry, threads);
     }
 
-    py::array_t<int64_t> one_sided() const {
-        return to_array(mono_ ? mono_->one_sided() : poly_->one_sided());
-    }
+    py::array_t<int64_t> one_sided() const { return to_array(engine_->one_sided()); }
 
     py::array_t<bool> placed() const {
-        std::vector<bool> flags = mono_ ? mono_->placed() : poly_->placed();
+        std::vector<bool> flags = engine_->placed();
         py::array_t<bool> out(static_cast<py::ssize_t>(flags.size()));
         bool *data = out.mutable_data();
         for (size_t i = 0; i < flags.size(); ++i) data[i] = flags[i];
@@ -341,7 +384,7 @@ class Tessellation {
         Cells out;
         {
             py::gil_scoped_release release;
-            out = mono_ ? mono_->cells(idx, indices.shape(0)) : poly_->cells(idx, indices.shape(0));
+            out = engine_->cells(idx, indices.shape(0));
         }
         py::dict result;
         result["face_counts"] = to_array(out.face_counts);
@@ -356,8 +399,7 @@ class Tessellation {
 
   private:
     int64_t n_ = 0;
-    std::unique_ptr<Engine<voro::container>> mono_;
-    std::unique_ptr<Engine<voro::container_poly>> poly_;
+    std::unique_ptr<EngineBase> engine_;
 };
 
 }  // namespace
@@ -365,14 +407,15 @@ class Tessellation {
 PYBIND11_MODULE(_voro, m) {
     m.doc() = "Voronoi and Laguerre cells of points, as flat arrays, from Voro++.";
     py::class_<Tessellation>(m, "Tessellation")
-        .def(py::init<py::array_t<double, py::array::c_style | py::array::forcecast>,
-                      std::optional<py::array_t<double, py::array::c_style | py::array::forcecast>>,
-                      std::array<double, 6>, std::array<bool, 3>, std::array<int, 3>, int>(),
+        .def(py::init<Tessellation::Array, std::optional<Tessellation::Array>,
+                      std::array<double, 6>, std::array<bool, 3>, std::array<int, 3>, int,
+                      std::optional<std::array<double, 3>>>(),
              py::arg("points"), py::arg("radii"), py::arg("box"), py::arg("periodic"),
-             py::arg("blocks"), py::arg("threads"),
+             py::arg("blocks"), py::arg("threads"), py::arg("tilt") = py::none(),
              "Points (n, 3) in a box (xlo, xhi, ylo, yhi, zlo, zhi), periodic per axis, cut "
              "into blocks per axis for Voro++'s search; radii (n,) or None; one container per "
-             "thread.")
+             "thread. With tilt (xy, xz, yz), the box is the triclinic one with edges "
+             "(xhi, 0, 0), (xy, yhi, 0), (xz, yz, zhi) from 0, periodic on every side.")
         .def("placed", &Tessellation::placed,
              "Per point: True where Voro++ placed it in the box.")
         .def("one_sided", &Tessellation::one_sided,

@@ -39,11 +39,25 @@ SAFETY = 1e-5  # points closer than this (in the scaled box) are refused: Voro++
 
 @dataclass(frozen=True)
 class Box:
-    """An axis-aligned box, ``low[a] <= x[a] < high[a]``, periodic or walled per axis."""
+    """A box, ``low[a] <= x[a] < high[a]``, periodic or walled per axis; with ``tilt`` (xy,
+    xz, yz, as LAMMPS writes them) the triclinic box from ``low`` with edges (lx, 0, 0),
+    (xy, ly, 0) and (xz, yz, lz), periodic on every side (Voro++ tessellates no other)."""
 
     low: tuple[float, float, float]
     high: tuple[float, float, float]
     periodic: tuple[bool, bool, bool] = (True, True, True)
+    tilt: tuple[float, float, float] | None = None
+
+    @property
+    def matrix(self) -> np.ndarray:
+        """The edges of the box as the columns of a 3 x 3 matrix."""
+        lx, ly, lz = self.lengths
+        xy, xz, yz = self.tilt or (0.0, 0.0, 0.0)
+        return np.array([[lx, xy, xz], [0.0, ly, yz], [0.0, 0.0, lz]])
+
+    def fractions(self, xyz: np.ndarray) -> np.ndarray:
+        """Points as fractions of the box's edges from ``low`` (0 to 1 inside)."""
+        return np.linalg.solve(self.matrix, (xyz - np.asarray(self.low)).T).T
 
     @classmethod
     def cube(cls, side: float, periodic: tuple[bool, bool, bool] = (True, True, True)) -> Box:
@@ -62,7 +76,10 @@ class Box:
         """``[0, 1] x [0, 2] x [0, 1], periodic in x, y`` and the like."""
         sides = " x ".join(f"[{a:g}, {b:g}]" for a, b in zip(self.low, self.high, strict=True))
         axes = "".join(a for a, p in zip("xyz", self.periodic, strict=True) if p)
-        return f"{sides}, " + (f"periodic in {', '.join(axes)}" if axes else "walled")
+        tilted = (
+            f" tilted by xy, xz, yz = {', '.join(f'{t:g}' for t in self.tilt)}" if self.tilt else ""
+        )
+        return f"{sides}{tilted}, " + (f"periodic in {', '.join(axes)}" if axes else "walled")
 
 
 @dataclass
@@ -168,8 +185,7 @@ def block_order(xyz: np.ndarray, box: Box) -> np.ndarray:
     """The order in which the cells of points ``xyz`` are computed: by Voro++'s blocks, x
     fastest, then y, then z (stable: points of one block in their given order)."""
     blocks = _blocks(len(xyz), box)
-    low = np.asarray(box.low)
-    cell = np.floor((xyz - low) / box.lengths * blocks).astype(np.int64)
+    cell = np.floor(box.fractions(xyz) * blocks).astype(np.int64)
     cell = np.where(box.periodic, cell % blocks, np.clip(cell, 0, blocks - 1))
     key = (cell[:, 2] * blocks[1] + cell[:, 1]) * blocks[0] + cell[:, 0]
     return np.argsort(key, kind="stable")
@@ -198,7 +214,9 @@ def check_points(points: Points, box: Box) -> None:
         raise GrainclassError(
             f"{points.where(i)}: point {points.ids[i]} has a negative radius ({points.radii[i]:g})"
         )
-    close = _close_pair(xyz * _scale(box), Box(*_scaled_limits(box), box.periodic))
+    if box.tilt is not None and not all(box.periodic):
+        raise GrainclassError(f"a tilted box must be periodic on every side: {box.describe()}")
+    close = _close_pair(box.fractions(xyz), box.matrix * _scale(box), box.periodic)
     if close is not None:
         i, j = sorted(close)
         same = np.array_equal(xyz[i], xyz[j])
@@ -214,28 +232,33 @@ def _scaled_limits(box: Box) -> tuple[tuple[float, ...], tuple[float, ...]]:
     return tuple(v * scale for v in box.low), tuple(v * scale for v in box.high)
 
 
-def _close_pair(xyz: np.ndarray, box: Box) -> tuple[int, int] | None:
-    """Two points within SAFETY of each other (through the periodic sides), or None.
+def _close_pair(
+    fractions: np.ndarray, matrix: np.ndarray, periodic: tuple[bool, bool, bool]
+) -> tuple[int, int] | None:
+    """Two points within SAFETY of each other (through the periodic sides), or None; points as
+    fractions of the box's edges, the columns of ``matrix`` (scaled as Voro++ gets them).
 
-    Sorted by x, a close pair is within SAFETY in x: only such neighbours are compared.
+    Sorted by their first fraction, a close pair is within SAFETY times the norm of the first
+    row of the inverse matrix in it: only such neighbours are compared.
     """
-    lengths = box.lengths
-    periodic = np.asarray(box.periodic)
-    wrapped = np.where(periodic, box.low + (xyz - box.low) % lengths, xyz)
-    order = np.argsort(wrapped[:, 0], kind="stable")
-    xs = wrapped[order, 0]
-    if periodic[0]:  # the points near x = low again, past x = high
-        extra = np.searchsorted(xs, box.low[0] + SAFETY, "right")
-        xs = np.concatenate([xs, xs[:extra] + lengths[0]])
+    wrap = np.asarray(periodic)
+    u = np.where(wrap, fractions % 1.0, fractions)
+    window = SAFETY * np.linalg.norm(np.linalg.inv(matrix)[0])
+    order = np.argsort(u[:, 0], kind="stable")
+    us = u[order, 0]
+    if wrap[0]:  # the points near the first side again, past the opposite one
+        extra = np.searchsorted(us, window, "right")
+        us = np.concatenate([us, us[:extra] + 1.0])
         order = np.concatenate([order, order[:extra]])
     lag = 1
-    while lag < len(xs):
-        close = np.flatnonzero(xs[lag:] - xs[:-lag] <= SAFETY)
+    while lag < len(us):
+        close = np.flatnonzero(us[lag:] - us[:-lag] <= window)
         if not len(close):
             return None
         a, b = order[close], order[close + lag]
-        delta = wrapped[b] - wrapped[a]
-        delta -= np.where(periodic, lengths * np.round(delta / lengths), 0.0)
+        delta = u[b] - u[a]
+        delta -= np.where(wrap, np.round(delta), 0.0)
+        delta = delta @ matrix.T
         hit = np.flatnonzero((np.einsum("ij,ij->i", delta, delta) <= SAFETY**2) & (a != b))
         if len(hit):
             return int(a[hit[0]]), int(b[hit[0]])
@@ -270,13 +293,18 @@ def tessellate(
     scale = _scale(box)
     low, high = _scaled_limits(box)
     n = len(points.xyz)
+    xyz, tilt = points.xyz * scale, None
+    if box.tilt is not None:  # Voro++'s tilted boxes start at 0
+        xyz, tilt = (points.xyz - np.asarray(box.low)) * scale, tuple(t * scale for t in box.tilt)
+        low, high = (0.0, 0.0, 0.0), tuple(box.lengths * scale)
     engine = _voro.Tessellation(
-        points.xyz * scale,
+        xyz,
         None if points.radii is None else points.radii * scale,
         (low[0], high[0], low[1], high[1], low[2], high[2]),
         box.periodic,
         tuple(int(b) for b in _blocks(n, box)),
         min(get_jobs(), max(1, n // 1000)),
+        tilt,
     )
     order = np.arange(n) if ordered else block_order(points.xyz, box)
     chunks = [order[a : a + chunk_size] for a in range(0, n, chunk_size)]

@@ -153,14 +153,14 @@ def voronoi_cmd(
             points = read_points(
                 points_path, None if points_format == "auto" else points_format, radius_column
             )
-            low, high = box if box is not None else (None, None)
+            low, high, tilt = (*box, None) if box is not None else (None, None, None)
             if low is None and points.box is not None:
-                low, high = points.box.low, points.box.high
+                low, high, tilt = points.box.low, points.box.high, points.box.tilt
             if low is None:
                 low, high = (0.0, 0.0, 0.0), (1.0, 1.0, 1.0)
             if periodic is None:
                 periodic = points.box.periodic if points.box is not None else (True,) * 3
-            the_box = Box(tuple(low), tuple(high), tuple(periodic))
+            the_box = Box(tuple(low), tuple(high), tuple(periodic), tilt)
             check_points(points, the_box)
         except GrainclassError as exc:
             raise click.ClickException(str(exc)) from None

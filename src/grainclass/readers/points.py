@@ -4,8 +4,8 @@
 - ``xyz``: (extended) XYZ, one frame: the number of points, a comment line (extended XYZ:
   ``Lattice="..."``, ``Properties=...``, ``pbc="T T T"``), then ``species x y z ...`` per point.
 - ``lammps``: a LAMMPS text dump, one frame, ``ITEM: BOX BOUNDS`` with ``pp`` (periodic) or
-  ``ff``/``fs``/``ss``/``fm``... (walled) per axis and ``ITEM: ATOMS id ... x y z ...``
-  (or ``xu``/``xs`` coordinates).
+  ``ff``/``fs``/``ss``/``fm``... (walled) per axis, or ``xy xz yz pp pp pp`` (a tilted box,
+  periodic), and ``ITEM: ATOMS id ... x y z ...`` (or ``xu``/``xs`` coordinates).
 - ``csv``: a header row naming ``x``, ``y``, ``z`` (and ``id``, ``r``/``radius``) columns.
 - ``npy``: an (n, 3) or (n, 4) array (x, y, z, r), or a structured array with those fields.
 
@@ -269,17 +269,31 @@ def _read_xyz(lines: list[str], source: str, radius_column: str | None) -> Point
             raise InputError(
                 source, "cannot read the Lattice of line 2: expected 9 numbers", 2
             ) from None
-        if np.count_nonzero(lattice - np.diag(np.diag(lattice))):
+        if lattice[0, 1] or lattice[0, 2] or lattice[1, 2]:
             raise InputError(
                 source,
-                "the Lattice of line 2 is not orthogonal: triclinic boxes are not supported",
+                "the Lattice of line 2 is tilted otherwise than LAMMPS's boxes: expected the "
+                "first edge along x and the second in the xy plane",
                 2,
             )
         origin = np.zeros(3)
         if "origin" in info:
             origin = np.array(info["origin"].split(), np.float64)
-        pbc = [flag.upper().startswith("T") for flag in info.get("pbc", "T T T").split()]
-        box = Box(tuple(origin), tuple(origin + np.diag(lattice)), tuple(pbc))
+        pbc = tuple(flag.upper().startswith("T") for flag in info.get("pbc", "T T T").split())
+        tilt = (lattice[1, 0], lattice[2, 0], lattice[2, 1])
+        if any(tilt) and not all(pbc):
+            raise InputError(
+                source,
+                "a tilted Lattice with walls: only tilted boxes periodic on every side "
+                'are tessellated (pbc="T T T")',
+                2,
+            )
+        box = Box(
+            tuple(origin),
+            tuple(origin + np.diag(lattice)),
+            pbc,
+            tuple(float(t) for t in tilt) if any(tilt) else None,
+        )
     ids = (
         _ids(table["id"], source, numbers, "point")
         if "id" in table
@@ -311,20 +325,43 @@ def _read_lammps(lines: list[str], source: str, radius_column: str | None) -> Po
         raise InputError(source, "expected the number of atoms", at + 2) from None
     at = found["BOX BOUNDS"]
     flags = lines[at][5:].split()[2:]
-    if len(flags) == 6 or (flags and flags[0] in ("xy", "xz", "yz")):
-        raise InputError(source, "a triclinic box: only orthogonal boxes are supported", at + 1)
+    tilted = flags[:3] == ["xy", "xz", "yz"]
+    flags = flags[3:] if tilted else flags
     if len(flags) != 3:
-        raise InputError(source, "expected BOX BOUNDS and three of pp, ff, fs, ...", at + 1)
+        raise InputError(
+            source, "expected BOX BOUNDS [xy xz yz] and three of pp, ff, fs, ...", at + 1
+        )
     bounds = []
     for k in range(3):
         try:
-            low, high = (float(v) for v in lines[at + 1 + k].split()[:2])
+            values = [float(v) for v in lines[at + 1 + k].split()[: 3 if tilted else 2]]
+            if len(values) != (3 if tilted else 2):
+                raise ValueError
         except (ValueError, IndexError):
-            raise InputError(source, "cannot read the box: expected low high", at + 2 + k) from None
-        bounds.append((low, high))
-    box = Box(
-        tuple(b[0] for b in bounds), tuple(b[1] for b in bounds), tuple(f == "pp" for f in flags)
-    )
+            expected = "low high tilt" if tilted else "low high"
+            raise InputError(
+                source, f"cannot read the box: expected {expected}", at + 2 + k
+            ) from None
+        bounds.append(values)
+    periodic = tuple(f == "pp" for f in flags)
+    if tilted:
+        # LAMMPS writes the bounds of the tilted box; its edges start from these lows.
+        xy, xz, yz = bounds[0][2], bounds[1][2], bounds[2][2]
+        x_low = bounds[0][0] - min(0.0, xy, xz, xy + xz)
+        x_high = bounds[0][1] - max(0.0, xy, xz, xy + xz)
+        y_low, y_high = bounds[1][0] - min(0.0, yz), bounds[1][1] - max(0.0, yz)
+        if not all(periodic):
+            raise InputError(
+                source,
+                "a tilted box with walls: only tilted boxes periodic on every side "
+                "(pp pp pp) are tessellated",
+                at + 1,
+            )
+        box = Box(
+            (x_low, y_low, bounds[2][0]), (x_high, y_high, bounds[2][1]), periodic, (xy, xz, yz)
+        )
+    else:
+        box = Box(tuple(b[0] for b in bounds), tuple(b[1] for b in bounds), periodic)
     at = found["ATOMS"]
     names = lines[at][5:].split()[1:]
     columns: dict[str, int] = {}
@@ -347,7 +384,7 @@ def _read_lammps(lines: list[str], source: str, radius_column: str | None) -> Po
     table, numbers = _table(rows, at + 2, columns, source, "atom")
     xyz = np.column_stack([table["x"], table["y"], table["z"]])
     if scaled:
-        xyz = np.asarray(box.low) + xyz * box.lengths
+        xyz = np.asarray(box.low) + xyz @ box.matrix.T
     ids = (
         _ids(table["id"], source, numbers, "atom")
         if "id" in table
