@@ -222,7 +222,7 @@ def test_laguerre_points_without_a_cell_are_named(tmp_path):
     points.write_text("1 0.5 0.5 0.5 0.45\n2 0.51 0.5 0.5 0.0\n3 0.1 0.1 0.1 0.1\n")
     result = _run("--points", str(points), "-o", str(tmp_path / "out.parquet"))
     assert result.exit_code == 0, result.output
-    assert "1 point(s) without a Laguerre cell" in result.stderr
+    assert "1 point(s) without a cell (hidden by their neighbours' radii)" in result.stderr
     assert pq.read_table(tmp_path / "out.parquet")["grain_id"].to_pylist() == ["1", "3"]
 
 
@@ -295,3 +295,12 @@ def test_bcc_points_in_a_tilted_box_give_truncated_octahedra(tmp_path):
     assert set(table["n_faces"].to_pylist()) == {14}
     assert set(table["symmetry"].to_pylist()) == {48}
     np.testing.assert_allclose(table["volume"].to_numpy(), 1 / 16)
+
+
+def test_points_on_the_upper_walls_have_cells(tmp_path):
+    """As in a LAMMPS box shrunk to its atoms: Voro++ alone would drop the point at x = 1."""
+    points = tmp_path / "points.txt"
+    points.write_text("1 1.0 0.5 0.5\n2 0.2 0.2 0.2\n3 0 0 1\n")
+    table = _ours(tmp_path, "--points", str(points), "--periodic", "none")
+    assert table["grain_id"].to_pylist() == ["1", "2", "3"]
+    assert pc.sum(table["volume"]).as_py() == pytest.approx(1.0, rel=1e-9)

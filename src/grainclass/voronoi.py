@@ -93,12 +93,16 @@ class VoronoiReport:
     boundary: int = 0  # cells with a face on a wall of the box
     no_cell: list[str] = field(default_factory=list)  # points without a cell (Laguerre)
 
-    def problems(self, box_volume: float, simple: bool = True) -> list[str]:
+    def problems(self, box_volume: float, simple: bool = True, weighted: bool = False) -> list[str]:
         """What the checks found wrong with a tessellation of a box of volume ``box_volume``:
         empty when every face is seen from both sides, the cells fill the box (to a relative
         1e-9: their volumes are summed in floating point) and, with ``simple``, every corner
-        has three faces (points in general position; a lattice has corners of more)."""
+        has three faces (points in general position; a lattice has corners of more). Unless
+        ``weighted`` (a Laguerre tessellation, where a point may be hidden), every point must
+        have a cell."""
         found = []
+        if not weighted and self.no_cell:
+            found.append(f"{len(self.no_cell)} point(s) without a cell")
         if simple and self.bad_corners:
             found.append(f"{self.bad_corners} cell(s) with a corner not of three faces")
         if self.one_sided_faces:
@@ -294,6 +298,12 @@ def tessellate(
     low, high = _scaled_limits(box)
     n = len(points.xyz)
     xyz, tilt = points.xyz * scale, None
+    # Voro++ places a point at low <= x < high; a point on the upper wall (a LAMMPS box shrunk
+    # to its atoms has some) is kept by standing that wall 1e-12 of the side further out.
+    high = tuple(
+        h if periodic else h + 1e-12 * (h - lo)
+        for lo, h, periodic in zip(low, high, box.periodic, strict=True)
+    )
     if box.tilt is not None:  # Voro++'s tilted boxes start at 0
         xyz, tilt = (points.xyz - np.asarray(box.low)) * scale, tuple(t * scale for t in box.tilt)
         low, high = (0.0, 0.0, 0.0), tuple(box.lengths * scale)

@@ -198,14 +198,16 @@ def voronoi_cmd(
             f"side: {report.one_sided_faces}",
             err=True,
         )
-        if report.no_cell:
-            shown = ", ".join(report.no_cell[:10]) + (" ..." if len(report.no_cell) > 10 else "")
-            click.echo(
-                f"grainclass: {len(report.no_cell)} point(s) without a Laguerre cell (hidden by "
-                f"their neighbours' radii), so without a grain: {shown}",
-                err=True,
-            )
-    problems = report.problems(the_box.volume, simple=points_path is None)
+    weighted = points_path is not None and points.radii is not None
+    if report.no_cell and (weighted or not quiet):
+        shown = ", ".join(report.no_cell[:10]) + (" ..." if len(report.no_cell) > 10 else "")
+        why = " (hidden by their neighbours' radii)" if weighted else ""
+        click.echo(
+            f"grainclass: {len(report.no_cell)} point(s) without a cell{why}, so without a "
+            f"grain: {shown}",
+            err=True,
+        )
+    problems = report.problems(the_box.volume, simple=points_path is None, weighted=weighted)
     if problems:
         raise click.ClickException(
             f"the tessellation failed its checks ({'; '.join(problems)}); {output} is written, "
