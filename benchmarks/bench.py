@@ -381,6 +381,23 @@ def bench_voronoi(work: Path, n: int = 268_402, big: int = 2_000_000) -> None:
     print(
         f"    grainclass voronoi {n:,} --seed 1 -o pv.txt (random seeds, no types): {seconds:.1f} s"
     )
+    with_types = timed(f"{gc} classify {text} -o {out} -q").seconds
+    without = timed(f"{gc} classify {text} -o {out} -q --no-types").seconds
+    print(
+        f"    classify pv.txt: {with_types:.1f} s ({n / with_types:,.0f} grains/s) with Weinberg "
+        f"vectors, {without:.1f} s ({n / without:,.0f} grains/s) with --no-types"
+    )
+    if voro:
+        # Compile the face-loop reader's kernels on a few cells first: not part of the timing.
+        few_cells = work / "few.vol"
+        with open(f"{seeds}.vol") as cells:
+            few_cells.write_text("".join(itertools.islice(cells, 100)))
+        subprocess.run(f"{gc} classify {few_cells} -o {out} -q", shell=True, check=True)
+        of_voro = timed(f"{gc} classify {seeds}.vol -o {out} -q")
+        print(
+            f"    grainclass classify of voro++'s output: {of_voro.seconds:.1f} s, "
+            f"{of_voro.peak_mb:.0f} MB"
+        )
     _points_file(seeds, big, 3)
     side = 1024 * (big / n) ** (1 / 3)
     many = timed(f"{gc} voronoi --points {seeds} --box {side:.6g} -o {out} -q")
