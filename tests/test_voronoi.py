@@ -86,6 +86,8 @@ def test_voronoi_report_problems():
         "the cells' volume is 7.9, the box's 8",
     ]
     assert report.problems(8.0, simple=False)[0].startswith("2 cell(s)")
+    report.one_sided = ["7", "12"]
+    assert "seen from one side only (points 7, 12)" in report.problems(8.0)[1]
 
 
 DATA = Path(__file__).resolve().parent / "data" / "voro"

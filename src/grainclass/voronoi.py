@@ -2,9 +2,9 @@
 
 Voro++ is compiled into grainclass (``_voro.cpp`` over the sources in ``vendor/voro++``): a
 :class:`grainclass._voro.Tessellation` holds the points in one Voro++ container per thread and
-hands back the cells of a run of points as flat arrays (face loops of cell-local corner
-numbers, the point behind each face or a wall, volumes and surface areas), computed on every
-thread without the GIL. No Python object is made per cell or per face.
+hands back the cells of a run of points as flat arrays (per face its number of edges, the face
+across each edge and the point behind it or a wall; per cell its volume, surface area and
+flags), computed on every thread without the GIL. No Python object is made per cell or face.
 
 Cells are computed in the order of Voro++'s blocks, a chunk at a time, bottom of the box up:
 neighbouring cells are computed together, and memory holds one chunk's cells at a time.
@@ -89,6 +89,7 @@ class VoronoiReport:
     cells: int = 0
     bad_corners: int = 0  # cells with a corner of more or fewer than three faces
     one_sided_faces: int = 0  # cells listing a face that the cell behind it does not list back
+    one_sided: list[str] = field(default_factory=list)  # the ids of those cells' points
     volume: float = 0.0
     boundary: int = 0  # cells with a face on a wall of the box
     no_cell: list[str] = field(default_factory=list)  # points without a cell (Laguerre)
@@ -106,7 +107,11 @@ class VoronoiReport:
         if simple and self.bad_corners:
             found.append(f"{self.bad_corners} cell(s) with a corner not of three faces")
         if self.one_sided_faces:
-            found.append(f"{self.one_sided_faces} cell(s) with a face seen from one side only")
+            ids = ", ".join(self.one_sided[:10]) + (" ..." if len(self.one_sided) > 10 else "")
+            found.append(
+                f"{self.one_sided_faces} cell(s) with a face seen from one side only"
+                + (f" (points {ids})" if ids else "")
+            )
         if abs(self.volume - box_volume) > 1e-9 * box_volume:
             found.append(f"the cells' volume is {self.volume:.12g}, the box's {box_volume:.12g}")
         return found
@@ -329,7 +334,9 @@ def tessellate(
             batch = _batch(points, cells, raw, scale, report)
             if len(batch):
                 yield batch
-    report.one_sided_faces += len(engine.one_sided())
+    one_sided = engine.one_sided()
+    report.one_sided_faces += len(one_sided)
+    report.one_sided.extend(str(i) for i in points.ids[one_sided])
 
 
 def _batch(
