@@ -346,47 +346,75 @@ def bench_startup(work: Path) -> None:
     )
 
 
-def bench_voronoi(work: Path, n: int = 268_402) -> None:
-    import pyvoro2
-
+def bench_voronoi(work: Path, n: int = 268_402, big: int = 2_000_000) -> None:
+    """``grainclass voronoi --points`` from a points file to classified Parquet (Weinberg
+    vectors included) against the voro++ program alone on the same points, then ``big``
+    points for the memory."""
     gc = " ".join(GRAINCLASS)
-    text = work / "pv.txt"
-    # Compile the slab kernels before timing (two slabs' worth of seeds).
-    subprocess.run(f"{gc} voronoi 40000 -o {text} -q", shell=True, check=True)
-    seconds, mem, _ = timed_tree(f"{gc} voronoi {n} --seed 1 -o {text} -q")
-    points = np.random.default_rng(1).random((n, 3)) * 1024
-    domain = pyvoro2.OrthorhombicCell(((0.0, 1024.0),) * 3, periodic=(True, True, True))
-    start = time.perf_counter()
-    pyvoro2.compute(points, domain=domain, output="cells")
-    voro_only = time.perf_counter() - start
-    print(
-        f"(f) grainclass voronoi {n:,} -o pv.txt: {seconds:.1f} s, {mem:.0f} MB (all processes) "
-        f"(one plain pyvoro2.compute of the whole box, in process: {voro_only:.1f} s)"
+    few = work / "few-points"
+    _points_file(few, 2000, 2)
+    # Compile the classification kernels before timing.
+    subprocess.run(
+        f"{gc} voronoi --points {few} --box 1024 -o {work / 'few.parquet'} -q",
+        shell=True,
+        check=True,
     )
+    seeds = work / "seeds"
+    _points_file(seeds, n, 1)
     out = work / "pv.parquet"
+    ours = timed(f"{gc} voronoi --points {seeds} --box 1024 -o {out} -q")
+    line = (
+        f"(f) grainclass voronoi --points ({n:,} Poisson points) -o pv.parquet: "
+        f"{ours.seconds:.1f} s, {ours.peak_mb:.0f} MB, CPU {ours.user + ours.system:.1f} s"
+    )
+    voro = shutil.which("voro++")
+    if voro:
+        command = f"{voro} -p -c '%i %v %F %t' 0 1024 0 1024 0 1024 {seeds}"
+        alone = timed(command)
+        print(
+            f"{line}\n    voro++ -p -c '%i %v %F %t' alone, same points: {alone.seconds:.1f} s, "
+            f"{alone.peak_mb:.0f} MB, CPU {alone.user + alone.system:.1f} s; "
+            f"grainclass / voro++: x{ours.seconds / alone.seconds:.2f}"
+        )
+    else:
+        print(f"{line}\n    (voro++ not installed: apt-get install voro++ to compare)")
+    text = work / "pv.txt"
+    seconds = timed(f"{gc} voronoi {n} --seed 1 -o {text} -q").seconds
+    print(
+        f"    grainclass voronoi {n:,} --seed 1 -o pv.txt (random seeds, no types): {seconds:.1f} s"
+    )
     with_types = timed(f"{gc} classify {text} -o {out} -q").seconds
     without = timed(f"{gc} classify {text} -o {out} -q --no-types").seconds
     print(
         f"    classify pv.txt: {with_types:.1f} s ({n / with_types:,.0f} grains/s) with Weinberg "
         f"vectors, {without:.1f} s ({n / without:,.0f} grains/s) with --no-types"
     )
-    voro = shutil.which("voro++")
     if voro:
-        seeds = work / "seeds"
-        np.savetxt(seeds, np.column_stack([np.arange(n), points]), fmt="%d %.17g %.17g %.17g")
-        command = f"{voro} -p -c '%i %v %F %t' 0 1024 0 1024 0 1024 {seeds}"
-        cli_seconds, cli_mem, *_ = timed(command)
-        print(f"    voro++ -p, same seeds: {cli_seconds:.1f} s, {cli_mem:.0f} MB")
-        out = work / "v.parquet"
         # Compile the face-loop reader's kernels on a few cells first: not part of the timing.
-        few = work / "few.vol"
+        few_cells = work / "few.vol"
         with open(f"{seeds}.vol") as cells:
-            few.write_text("".join(itertools.islice(cells, 100)))
-        subprocess.run(f"{gc} classify {few} -o {out} -q", shell=True, check=True)
-        classify_seconds, classify_mem, *_ = timed(f"{gc} classify {seeds}.vol -o {out} -q")
-        print(f"    grainclass classify of that: {classify_seconds:.1f} s, {classify_mem:.0f} MB")
-    else:
-        print("    (voro++ not installed: apt-get install voro++ to compare)")
+            few_cells.write_text("".join(itertools.islice(cells, 100)))
+        subprocess.run(f"{gc} classify {few_cells} -o {out} -q", shell=True, check=True)
+        of_voro = timed(f"{gc} classify {seeds}.vol -o {out} -q")
+        print(
+            f"    grainclass classify of voro++'s output: {of_voro.seconds:.1f} s, "
+            f"{of_voro.peak_mb:.0f} MB"
+        )
+    _points_file(seeds, big, 3)
+    side = 1024 * (big / n) ** (1 / 3)
+    many = timed(f"{gc} voronoi --points {seeds} --box {side:.6g} -o {out} -q")
+    print(
+        f"    {big:,} points to Parquet: {many.seconds:.1f} s, {many.peak_mb:.0f} MB "
+        f"({big / many.seconds:,.0f} cells/s)"
+    )
+
+
+def _points_file(path: Path, n: int, seed: int) -> None:
+    """``n`` uniform random points in a cube of side 1024 * (n / 268402)^(1/3), as Voro++'s
+    input (``id x y z``)."""
+    side = 1024 * (n / 268_402) ** (1 / 3)
+    points = np.random.default_rng(seed).random((n, 3)) * side
+    np.savetxt(path, np.column_stack([np.arange(n), points]), fmt="%d %.17g %.17g %.17g")
 
 
 def bench_census(sizes: list[int], parts: int, work: Path) -> None:
@@ -535,13 +563,16 @@ def main() -> None:
     )
     parser.add_argument("--prisms", type=int, nargs="+", default=[1000, 4000, 20000])
     parser.add_argument("--prisms-only", action="store_true", help="only (i), the prisms")
+    parser.add_argument("--voronoi-only", action="store_true", help="only (f), Voronoi cells")
     args = parser.parse_args()
     if args.rounds < 1:
         parser.error("--rounds must be at least 1")
     print(f"grainclass benchmarks on {available_cpus()} cores, {time.strftime('%Y-%m-%d %H:%M')}")
     with tempfile.TemporaryDirectory() as tmp:
         work = Path(tmp)
-        if args.perturb_only or args.prisms_only:
+        if args.perturb_only or args.prisms_only or args.voronoi_only:
+            if args.voronoi_only:
+                bench_voronoi(work)
             if args.perturb_only:
                 bench_perturb(work, args.rounds)
             if args.prisms_only:

@@ -13,13 +13,12 @@ import numpy as np
 import pyarrow as pa
 import pyarrow.compute as pc
 import pytest
-import pyvoro2
 from click.testing import CliRunner
 
 from conftest import ctrl_c_at_a_terminal
 from grainclass import classify, read_dataset
 from grainclass.cli import cli
-from grainclass.voronoi import VoronoiReport, poisson_voronoi
+from grainclass.voronoi import Box, VoronoiReport, block_order, poisson_voronoi
 
 KEYS = ["n_faces", "p_vector", "class", "trees", "split_k", "penalty", "weinberg", "symmetry"]
 
@@ -77,28 +76,42 @@ def test_voronoi_that_fails_its_checks_exits_1_and_says_why(tmp_path, monkeypatc
 
 def test_voronoi_report_problems():
     report = VoronoiReport(cells=8, volume=8.0)
-    assert report.problems(2.0) == []
+    assert report.problems(8.0) == []
     report.volume = 7.9
     report.one_sided_faces = 2
-    assert report.problems(2.0) == [
-        "2 face(s) seen from one side only",
+    report.bad_corners = 1
+    assert report.problems(8.0) == [
+        "1 cell(s) with a corner not of three faces",
+        "2 cell(s) with a face seen from one side only",
         "the cells' volume is 7.9, the box's 8",
     ]
+    assert report.problems(8.0, simple=False)[0].startswith("2 cell(s)")
+    report.one_sided = ["7", "12"]
+    assert "seen from one side only (points 7, 12)" in report.problems(8.0)[1]
 
 
-def _voro_cells(n: int, seed: int) -> list[dict]:
-    points = np.random.default_rng(seed).random((n, 3)) * 8
-    domain = pyvoro2.OrthorhombicCell(((0, 8),) * 3, periodic=(True, True, True))
-    return sorted(pyvoro2.compute(points, domain=domain, output="cells"), key=lambda c: c["id"])
+DATA = Path(__file__).resolve().parent / "data" / "voro"
+
+
+def _voro_cells(name: str) -> list[dict]:
+    """The cells of a voro++ -c "%i %v %t" file of tests/data/voro, as dicts."""
+    cells = []
+    for line in (DATA / name).read_text().splitlines():
+        head, _, loops = line.partition("(")
+        words = head.split()
+        faces = [[int(v) for v in loop.strip(" ()").split(",")] for loop in ("(" + loops).split()]
+        cells.append({"id": int(words[0]), "volume": float(words[1]), "faces": faces})
+    return sorted(cells, key=lambda c: c["id"])
 
 
 def test_the_same_grains_from_adjacency_voro_and_loop_text(tmp_path):
-    cells = _voro_cells(300, 11)
+    # 300 points in a periodic box of side 8 (voro++ -p -c "%i %v %t" 0 8 0 8 0 8).
+    cells = _voro_cells("periodic-300.vol")
     voro = tmp_path / "cells.voro"
     voro.write_text(
         "".join(
             f"{c['id']} {c['volume']} "
-            + " ".join("(" + ",".join(map(str, f["vertices"])) + ")" for f in c["faces"])
+            + " ".join("(" + ",".join(map(str, f)) + ")" for f in c["faces"])
             + "\n"
             for c in cells
         )
@@ -106,7 +119,7 @@ def test_the_same_grains_from_adjacency_voro_and_loop_text(tmp_path):
     loops = tmp_path / "cells.loops"
     loops.write_text(
         "".join(
-            f"{c['id']}\t" + ";".join(" ".join(map(str, f["vertices"])) for f in c["faces"]) + "\n"
+            f"{c['id']}\t" + ";".join(" ".join(map(str, f)) for f in c["faces"]) + "\n"
             for c in cells
         )
     )
@@ -186,7 +199,7 @@ def test_unreadable_loops_are_invalid_rows_and_the_others_are_kept(tmp_path):
     assert [r["grain_id"] for r in rows] == ["1", "2", "3", "4"]
     assert (
         rows[1]["error"] == f"{voro}:2: cannot read this cell: expected id [volume [area]] "
-        "(loop) (loop) ..."
+        "[neighbours] (loop) ..."
     )
     assert rows[2]["error"].startswith(f"{voro}:3: cannot read this cell")
     loops = tmp_path / "cells.loops"
@@ -282,7 +295,8 @@ def test_voro_command_line_output_gives_the_same_grains(tmp_path):
     # The Debian voro++ program on the seeds grainclass voronoi draws (scaled to its box).
     n, seed = 400, 5
     points = np.random.default_rng(seed).random((n, 3)) * 1024
-    points = points[np.argsort(points[:, 2])]  # grainclass numbers its seeds from the bottom up
+    # grainclass numbers its seeds in the order it computes their cells
+    points = points[block_order(points, Box.cube(1024.0))]
     seeds = tmp_path / "seeds"
     np.savetxt(seeds, np.column_stack([np.arange(n), points]), fmt="%d %.17g %.17g %.17g")
     subprocess.run(
@@ -299,53 +313,25 @@ def test_voro_command_line_output_gives_the_same_grains(tmp_path):
     assert by_id.select(keys).equals(ours.select(keys))
 
 
-def _grains(n: int, seed: int, **kwargs) -> tuple[pa.Table, VoronoiReport]:
-    report = VoronoiReport()
-    batches = list(poisson_voronoi(n, seed=seed, report=report, **kwargs))
-    return pa.concat_tables(classify(b) for b in batches), report
-
-
-@pytest.fixture(scope="module")
-def whole_3000():
-    return _grains(3000, 11, slab_seeds=10**9)
-
-
-@pytest.mark.parametrize("slab_seeds", [1000, 700])
-def test_slabs_give_the_grains_of_one_whole_tessellation(whole_3000, slab_seeds):
-    whole, _ = whole_3000
-    slabbed, report = _grains(3000, 11, slab_seeds=slab_seeds)
-    assert (report.cells, report.bad_corners, report.one_sided_faces) == (3000, 0, 0)
-    assert report.slabs_redone == 0
-    assert report.volume == pytest.approx(1.0, rel=1e-12)
-    assert slabbed.select(["grain_id", *KEYS]).equals(whole.select(["grain_id", *KEYS]))
-    for column in ("volume", "area"):
-        np.testing.assert_allclose(
-            slabbed.column(column).to_numpy(), whole.column(column).to_numpy(), rtol=1e-10
-        )
-
-
-def test_a_slab_whose_margin_is_too_thin_is_done_again(whole_3000, monkeypatch):
-    # Half a seed spacing of margin: corners' empty spheres reach past it, the check sees it.
-    monkeypatch.setattr("grainclass.voronoi.MARGIN_SPACINGS", 0.5)
-    slabbed, report = _grains(3000, 11, slab_seeds=1000)
-    assert report.slabs_redone > 0
-    assert report.one_sided_faces == 0
-    assert slabbed.select(["grain_id", *KEYS]).equals(whole_3000[0].select(["grain_id", *KEYS]))
-
-
 def test_seeds_closer_than_voro_can_separate_are_refused():
     from grainclass.errors import GrainclassError
-    from grainclass.voronoi import SAFETY, _check_spacing
+    from grainclass.voronoi import SAFETY, Points, check_points
 
     rng = np.random.default_rng(0)
-    points = rng.random((1000, 3)) * 1024
-    _check_spacing(points, 1024.0)
-    across = points.copy()
+    xyz = rng.random((1000, 3)) * 1024
+    box = Box.cube(1024.0)
+
+    def points(xyz):
+        return Points(xyz, np.arange(len(xyz)), np.arange(len(xyz)))
+
+    check_points(points(xyz), box)
+    across = xyz.copy()
     across[7] = [1024 - SAFETY / 4, 5.0, 5.0]  # close to seed 8 through the periodic wrap
     across[8] = [SAFETY / 4, 5.0, 5.0 + SAFETY / 4]
-    for bad in (np.vstack([points, points[3] + SAFETY / 2]), across):
-        with pytest.raises(GrainclassError, match="closer"):
-            _check_spacing(bad, 1024.0)
+    with pytest.raises(GrainclassError, match=r"point 8 is closer than Voro\+\+ can separate to"):
+        check_points(points(across), box)
+    with pytest.raises(GrainclassError, match="point 1000 is at the same place as point 3"):
+        check_points(points(np.vstack([xyz, xyz[3]])), box)
 
 
 def test_key_value_fields_read_alike_in_adjacency_text_and_face_loops(tmp_path):
@@ -479,11 +465,17 @@ def test_the_smallest_and_largest_box_fill_themselves():
         assert volume == pytest.approx(box**3, rel=1e-9)
 
 
-def test_ctrl_c_at_a_terminal_stops_the_slab_workers_quietly(tmp_path):
-    """Ctrl-C reaches the slab workers too, starting up or at their slab: they end quietly, and
-    the run exits 130 without a traceback and without its output."""
+def test_ctrl_c_at_a_terminal_stops_the_tessellation_quietly(tmp_path):
+    """Ctrl-C during the tessellation (its threads finish their chunk of cells): the run exits
+    130 without a traceback and without its output."""
     out = tmp_path / "pv.txt"
-    code, err = ctrl_c_at_a_terminal("voronoi", "268402", "--seed", "1", "-o", str(out), "-q")
+
+    def tessellating(pid: int) -> bool:  # the main thread and Voro++'s two
+        return len(list(Path(f"/proc/{pid}/task").iterdir())) >= 3
+
+    code, err = ctrl_c_at_a_terminal(
+        "voronoi", "268402", "--seed", "1", "-j", "2", "-o", str(out), "-q", when=tessellating
+    )
     assert code == 130
     assert "Traceback" not in err
     assert list(tmp_path.iterdir()) == []

@@ -6,9 +6,8 @@ the ranges at once. A stream of batches (the command line) runs whole batches at
 each on one thread, with results handed out in input order: no thread waits for another at
 every batch, which matters when a producer (plantri in a pipe) shares the cores.
 
-Work in pure Python (parsing Evolver files) or in a library that holds the GIL (Voro++ through
-pyvoro2) runs in worker processes instead (:func:`worker_pool`), which a terminal's Ctrl-C ends
-at once and quietly.
+Work in pure Python (parsing Evolver files) runs in worker processes instead
+(:func:`worker_pool`), which a terminal's Ctrl-C ends at once and quietly.
 """
 
 from __future__ import annotations

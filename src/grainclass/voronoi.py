@@ -1,68 +1,144 @@
-"""Periodic Poisson-Voronoi tessellations (the paper's V data set), computed with Voro++.
+"""Voronoi and Laguerre (power) tessellations of points in a box, computed with Voro++.
 
-Voro++ (through pyvoro2) merges vertices with an absolute tolerance suited to boxes of side about
-1000; in a unit box with a quarter of a million seeds that creates false 4-valent corners and
-faces seen from one side only. The seeds are therefore scaled by a power of two (exact in
-floating point) to a box of side about 1000, and volumes and areas scaled back. Every cell is
-then checked: three faces at each corner, and each face seen from both of its cells.
+Voro++ is compiled into grainclass (``_voro.cpp`` over the sources in ``vendor/voro++``): a
+:class:`grainclass._voro.Tessellation` holds the points in one Voro++ container per thread and
+hands back the cells of a run of points as flat arrays (per face its number of edges, the face
+across each edge and the point behind it or a wall; per cell its volume, surface area and
+flags), computed on every thread without the GIL. No Python object is made per cell or face.
 
-Large tessellations go slab by slab. pyvoro2 hands back every cell as Python dicts and lists
-(about 8 KB a cell, and most of its time; its own checks of the input in Python take longer than
-Voro++ itself), so all cells at once would not fit in 2 GB. A slab of the box is tessellated
-with the seeds of a margin on either side (x and y stay periodic) by pyvoro2's Voro++ call
-directly (``pyvoro2._core.compute_box_standard`` of pyvoro2 0.8.0, pinned exactly), on the
-cores in parallel; only the face loops are asked for, and the corners are
-computed from the seeds (``_kernels/voronoi.py``). A slab cell is the true periodic cell when
-the empty sphere of each of its corners stays within the seeds present: this is checked for
-every corner, and a slab that fails is done again with twice the margin. The input checks that
-pyvoro2 would make (no two seeds within its safety distance) are made here, vectorized.
+Cells are computed in the order of Voro++'s blocks, a chunk at a time, bottom of the box up:
+neighbouring cells are computed together, and memory holds one chunk's cells at a time.
+
+The points are scaled by a power of two (exact in floating point) to a box of volume about
+1000^3, and volumes and areas scaled back. Every tessellation is checked: each face seen from
+both of its cells, the cells filling the box, and (reported) corners of three faces.
 """
 
 from __future__ import annotations
 
-import gc
-import itertools
 import math
-from collections import Counter
 from collections.abc import Iterator
-from concurrent.futures import Future
-from contextlib import contextmanager
-from dataclasses import dataclass
+from concurrent.futures import ThreadPoolExecutor
+from dataclasses import dataclass, field
 
 import numpy as np
 
 from grainclass import DEFAULT_CHUNK_SIZE
-from grainclass.batch import GrainBatch, offsets_from_counts, run_indices
+from grainclass.batch import GrainBatch, offsets_from_counts
 from grainclass.errors import GrainclassError
-from grainclass.geometry import loop_arrays, polytope_measures
 
-SLAB_SEEDS = 35_000  # seeds per slab at most; below two slabs' worth, one call does it all
-MARGIN_SPACINGS = 3.0  # seeds around a slab, in mean seed spacings (a failed check doubles it)
-SAFETY = 1e-5  # pyvoro2 refuses seeds closer than this (in the scaled box)
+POINTS_PER_BLOCK = 5.0  # points per Voro++ search block, as Voro++'s documentation advises
+# Flags per cell from the engine (grainclass/_voro.cpp).
+BAD_CORNER = 1  # a corner not on exactly three faces
+OPEN = 2  # an edge not on exactly two faces
+WALL = 4  # a face on a wall of the box: the cell is cut by a side that is not periodic
+
+SAFETY = 1e-5  # points closer than this (in the scaled box) are refused: Voro++ cannot tell them
+# apart reliably (its tolerances are relative to the box: about 1e-12 of a side in distance)
+
+
+@dataclass(frozen=True)
+class Box:
+    """A box, ``low[a] <= x[a] < high[a]``, periodic or walled per axis; with ``tilt`` (xy,
+    xz, yz, as LAMMPS writes them) the triclinic box from ``low`` with edges (lx, 0, 0),
+    (xy, ly, 0) and (xz, yz, lz), periodic on every side (Voro++ tessellates no other)."""
+
+    low: tuple[float, float, float]
+    high: tuple[float, float, float]
+    periodic: tuple[bool, bool, bool] = (True, True, True)
+    tilt: tuple[float, float, float] | None = None
+
+    @property
+    def matrix(self) -> np.ndarray:
+        """The edges of the box as the columns of a 3 x 3 matrix."""
+        lx, ly, lz = self.lengths
+        xy, xz, yz = self.tilt or (0.0, 0.0, 0.0)
+        return np.array([[lx, xy, xz], [0.0, ly, yz], [0.0, 0.0, lz]])
+
+    def fractions(self, xyz: np.ndarray) -> np.ndarray:
+        """Points as fractions of the box's edges from ``low`` (0 to 1 inside)."""
+        return np.linalg.solve(self.matrix, (xyz - np.asarray(self.low)).T).T
+
+    @classmethod
+    def cube(cls, side: float, periodic: tuple[bool, bool, bool] = (True, True, True)) -> Box:
+        """The cube ``[0, side)^3``."""
+        return cls((0.0, 0.0, 0.0), (side, side, side), periodic)
+
+    @property
+    def lengths(self) -> np.ndarray:
+        return np.subtract(self.high, self.low, dtype=np.float64)
+
+    @property
+    def volume(self) -> float:
+        return float(np.prod(self.lengths))
+
+    def describe(self) -> str:
+        """``[0, 1] x [0, 2] x [0, 1], periodic in x, y`` and the like."""
+        sides = " x ".join(f"[{a:g}, {b:g}]" for a, b in zip(self.low, self.high, strict=True))
+        axes = "".join(a for a, p in zip("xyz", self.periodic, strict=True) if p)
+        tilted = (
+            f" tilted by xy, xz, yz = {', '.join(f'{t:g}' for t in self.tilt)}" if self.tilt else ""
+        )
+        return f"{sides}{tilted}, " + (f"periodic in {', '.join(axes)}" if axes else "walled")
 
 
 @dataclass
 class VoronoiReport:
-    """What the checks found, filled in while the cells are read."""
+    """What the checks found, filled in while the cells are computed."""
 
     cells: int = 0
     bad_corners: int = 0  # cells with a corner of more or fewer than three faces
-    one_sided_faces: int = 0  # faces whose other cell does not list them back
+    one_sided_faces: int = 0  # cells listing a face that the cell behind it does not list back
+    one_sided: list[str] = field(default_factory=list)  # the ids of those cells' points
     volume: float = 0.0
-    slabs_redone: int = 0  # slab tessellations done again with a wider margin
+    boundary: int = 0  # cells with a face on a wall of the box
+    no_cell: list[str] = field(default_factory=list)  # points without a cell (Laguerre)
 
-    def problems(self, box: float) -> list[str]:
-        """What the checks found wrong with a tessellation of a cube of side ``box``: empty
-        when every corner has three faces, every face is seen from both sides and the cells
-        fill the box (to a relative 1e-9: their volumes are summed in floating point)."""
+    def problems(self, box_volume: float, simple: bool = True, weighted: bool = False) -> list[str]:
+        """What the checks found wrong with a tessellation of a box of volume ``box_volume``:
+        empty when every face is seen from both sides, the cells fill the box (to a relative
+        1e-9: their volumes are summed in floating point) and, with ``simple``, every corner
+        has three faces (points in general position; a lattice has corners of more). Unless
+        ``weighted`` (a Laguerre tessellation, where a point may be hidden), every point must
+        have a cell."""
         found = []
-        if self.bad_corners:
+        if not weighted and self.no_cell:
+            found.append(f"{len(self.no_cell)} point(s) without a cell")
+        if simple and self.bad_corners:
             found.append(f"{self.bad_corners} cell(s) with a corner not of three faces")
         if self.one_sided_faces:
-            found.append(f"{self.one_sided_faces} face(s) seen from one side only")
-        if abs(self.volume - box**3) > 1e-9 * box**3:
-            found.append(f"the cells' volume is {self.volume:.12g}, the box's {box**3:.12g}")
+            ids = ", ".join(self.one_sided[:10]) + (" ..." if len(self.one_sided) > 10 else "")
+            found.append(
+                f"{self.one_sided_faces} cell(s) with a face seen from one side only"
+                + (f" (points {ids})" if ids else "")
+            )
+        if abs(self.volume - box_volume) > 1e-9 * box_volume:
+            found.append(f"the cells' volume is {self.volume:.12g}, the box's {box_volume:.12g}")
         return found
+
+
+@dataclass
+class Points:
+    """Points to tessellate, as read from a file (``grainclass.readers.points``) or made here.
+
+    ``ids`` are the points' own ids (the grains' ``grain_id``); ``locations`` where each point
+    is in its input (a line number, or a record number: ``location_kind``); ``radii`` (or None)
+    make the tessellation a Laguerre one.
+    """
+
+    xyz: np.ndarray  # float64[n, 3]
+    ids: np.ndarray  # int64[n] or str objects
+    locations: np.ndarray  # int64[n]
+    source: str = "<memory>"
+    location_kind: str = "record"
+    radii: np.ndarray | None = None
+    box: Box | None = None  # from the file, where it says
+
+    def where(self, i: int) -> str:
+        """``points.xyz:12`` (a line) or ``points.npy, record 12``: where point ``i`` is."""
+        if self.location_kind == "line":
+            return f"{self.source}:{self.locations[i]}"
+        return f"{self.source}, record {self.locations[i]}"
 
 
 def poisson_voronoi(
@@ -71,7 +147,6 @@ def poisson_voronoi(
     box: float = 1.0,
     chunk_size: int = DEFAULT_CHUNK_SIZE,
     report: VoronoiReport | None = None,
-    slab_seeds: int = SLAB_SEEDS,
 ) -> Iterator[GrainBatch]:
     """Batches of the cells of a periodic Poisson-Voronoi tessellation of uniform random seeds.
 
@@ -87,271 +162,215 @@ def poisson_voronoi(
         Grains per batch.
     report : VoronoiReport, optional
         Filled with the checks' counts and the total volume.
-    slab_seeds : int
-        Tessellate slabs of at most about this many seeds at a time (module docstring).
 
     Yields
     ------
     GrainBatch
-        Grain ids are the seeds' 0-based ranks by z (the uniform random seeds are numbered from
-        the bottom of the box up); volumes and areas come with every grain.
+        Grain ids are the seeds' 0-based ranks in the order the cells are computed (Voro++'s
+        blocks, bottom of the box up), so grains come out in id order; volumes and areas come
+        with every grain.
     """
-    report = report if report is not None else VoronoiReport()
-    points = np.random.default_rng(seed).random((n_seeds, 3)) * box
-    # Seeds numbered from the bottom of the box up: a slab holds consecutive ids, so grains
-    # come out in id order slab after slab, written while later slabs are computed.
-    points = points[np.argsort(points[:, 2], kind="stable")]
-    scale = 2.0 ** round(math.log2(1000.0 / box))
-    side = box * scale
-    slabs = -(-n_seeds // slab_seeds)
-    margin = MARGIN_SPACINGS * side / n_seeds ** (1 / 3)
-    source = f"voronoi:{n_seeds}:{seed}"
-    scaled = points * scale  # a power of two: exact
-    if slabs < 2 or side / slabs + 2 * margin >= side:
-        yield from _whole(scaled, side, scale, source, chunk_size, report)
-        return
-    _check_spacing(scaled, side)
-    pairs = []  # (seed, neighbour) of every face, for the check that faces are mutual
-    for grains in _tessellate_slabs(scaled, side, slabs, margin):
-        pairs.append(grains["pairs"])
-        report.slabs_redone += grains["redone"]
-        yield from _slab_batches(grains, scale, source, chunk_size, report)
-    owner, adjacent = np.concatenate(pairs, axis=1)
-    forth, back = owner * n_seeds + adjacent, adjacent * n_seeds + owner
-    if not np.array_equal(np.sort(forth), np.sort(back)):
-        report.one_sided_faces += int((~np.isin(back, forth)).sum())
-
-
-@contextmanager
-def _gc_paused() -> Iterator[None]:
-    """No cyclic garbage collection while pyvoro2 builds and we read its millions of lists and
-    dicts (none of them in cycles): the collector's passes over them would take most of the
-    time."""
-    enabled = gc.isenabled()
-    gc.disable()
-    try:
-        yield
-    finally:
-        if enabled:
-            gc.enable()
-
-
-def _cell_areas(cells: list[dict]) -> np.ndarray:
-    """The surface area of each of pyvoro2's cells, from its corners and face loops."""
-    vertex_offsets = offsets_from_counts([len(cell["vertices"]) for cell in cells])
-    positions = np.concatenate([np.reshape(cell["vertices"], (-1, 3)) for cell in cells])
-    corners, loop_offsets = loop_arrays(
-        [face["vertices"] for cell in cells for face in cell["faces"]]
+    cube = Box.cube(box)
+    xyz = np.random.default_rng(seed).random((n_seeds, 3)) * box
+    xyz = xyz[block_order(xyz, cube)]
+    points = Points(
+        xyz, np.arange(n_seeds), np.arange(n_seeds), f"voronoi:{n_seeds}:{seed}", "record"
     )
-    cell_of_loop = np.repeat(np.arange(len(cells)), [len(cell["faces"]) for cell in cells])
-    corners += np.repeat(vertex_offsets[:-1][cell_of_loop], np.diff(loop_offsets))
-    return polytope_measures(positions, corners, loop_offsets, cell_of_loop, len(cells))[1]
+    yield from tessellate(points, cube, chunk_size=chunk_size, report=report, ordered=True)
 
 
-def _whole(
-    points: np.ndarray,
-    side: float,
-    scale: float,
-    source: str,
-    chunk_size: int,
-    report: VoronoiReport,
-) -> Iterator[GrainBatch]:
-    """The whole periodic box in one pyvoro2 call (small tessellations); ``points`` scaled to
-    a box of side ``side``, ``scale`` times the user's."""
-    import pyvoro2
+def _scale(box: Box) -> float:
+    """A power of two that takes the box to a volume of about 1000^3."""
+    return 2.0 ** round(math.log2(1000.0 / box.volume ** (1 / 3)))
 
-    from grainclass.readers.loops import batch_from_loops
 
-    with _gc_paused():
-        cells = pyvoro2.compute(
-            points,
-            domain=pyvoro2.OrthorhombicCell(((0.0, side),) * 3, periodic=(True, True, True)),
-            output="cells",
+def _blocks(n: int, box: Box) -> np.ndarray:
+    """Voro++'s search blocks per axis: about POINTS_PER_BLOCK points each."""
+    length = (box.volume * POINTS_PER_BLOCK / n) ** (1 / 3)
+    return np.maximum(1, np.round(box.lengths / length)).astype(np.int64)
+
+
+def block_order(xyz: np.ndarray, box: Box) -> np.ndarray:
+    """The order in which the cells of points ``xyz`` are computed: by Voro++'s blocks, x
+    fastest, then y, then z (stable: points of one block in their given order)."""
+    blocks = _blocks(len(xyz), box)
+    cell = np.floor(box.fractions(xyz) * blocks).astype(np.int64)
+    cell = np.where(box.periodic, cell % blocks, np.clip(cell, 0, blocks - 1))
+    key = (cell[:, 2] * blocks[1] + cell[:, 1]) * blocks[0] + cell[:, 0]
+    return np.argsort(key, kind="stable")
+
+
+def check_points(points: Points, box: Box) -> None:
+    """Refuse what Voro++ cannot tessellate, naming the point(s) and where they are: a point
+    outside a walled side of the box, a negative radius, and two points at one place or
+    closer than Voro++ can separate."""
+    xyz = points.xyz
+    if not len(xyz):
+        raise GrainclassError(f"{points.source}: no points in the box")
+    if not np.isfinite(xyz).all():
+        i = int(np.flatnonzero(~np.isfinite(xyz).all(axis=1))[0])
+        raise GrainclassError(f"{points.where(i)}: point {points.ids[i]} is not a finite point")
+    walled = ~np.asarray(box.periodic)
+    outside = ((xyz < box.low) | (xyz > box.high)) & walled
+    if outside.any():
+        i = int(np.flatnonzero(outside.any(axis=1))[0])
+        raise GrainclassError(
+            f"{points.where(i)}: point {points.ids[i]} at ({', '.join(f'{v:g}' for v in xyz[i])})"
+            f" lies outside the box {box.describe()}"
         )
-    cells.sort(key=lambda cell: cell["id"])
-    seen_from = Counter(
-        (cell["id"], face["adjacent_cell"]) for cell in cells for face in cell["faces"]
-    )
-    areas = _cell_areas(cells) / scale**2 if cells else np.empty(0)
-    pending = []
-    for cell, area in zip(cells, areas.tolist(), strict=True):
-        loops = [face["vertices"] for face in cell["faces"]]
-        report.cells += 1
-        report.volume += cell["volume"] / scale**3
-        if any(len(corner) != 3 for corner in cell["adjacency"]):
-            report.bad_corners += 1
-        report.one_sided_faces += sum(
-            seen_from[(face["adjacent_cell"], cell["id"])] == 0 for face in cell["faces"]
+    if points.radii is not None and (points.radii < 0).any():
+        i = int(np.flatnonzero(points.radii < 0)[0])
+        raise GrainclassError(
+            f"{points.where(i)}: point {points.ids[i]} has a negative radius ({points.radii[i]:g})"
         )
-        volume = cell["volume"] / scale**3
-        pending.append((str(cell["id"]), cell["id"], loops, volume, area, None))
-        if len(pending) >= chunk_size:
-            yield batch_from_loops(pending, source, "record", [False] * len(pending))
-            pending = []
-    if pending:
-        yield batch_from_loops(pending, source, "record", [False] * len(pending))
+    if box.tilt is not None and not all(box.periodic):
+        raise GrainclassError(f"a tilted box must be periodic on every side: {box.describe()}")
+    close = _close_pair(box.fractions(xyz), box.matrix * _scale(box), box.periodic)
+    if close is not None:
+        i, j = sorted(close)
+        same = np.array_equal(xyz[i], xyz[j])
+        raise GrainclassError(
+            f"{points.where(j)}: point {points.ids[j]} "
+            + ("is at the same place as" if same else "is closer than Voro++ can separate to")
+            + f" point {points.ids[i]} ({points.where(i)})"
+        )
 
 
-def _check_spacing(points: np.ndarray, side: float) -> None:
-    """Refuse seeds closer than pyvoro2's safety distance (periodic), as pyvoro2 would.
+def _scaled_limits(box: Box) -> tuple[tuple[float, ...], tuple[float, ...]]:
+    scale = _scale(box)
+    return tuple(v * scale for v in box.low), tuple(v * scale for v in box.high)
 
-    Sorted by x, a close pair is within SAFETY in x: only such neighbours are compared.
+
+def _close_pair(
+    fractions: np.ndarray, matrix: np.ndarray, periodic: tuple[bool, bool, bool]
+) -> tuple[int, int] | None:
+    """Two points within SAFETY of each other (through the periodic sides), or None; points as
+    fractions of the box's edges, the columns of ``matrix`` (scaled as Voro++ gets them).
+
+    Sorted by their first fraction, a close pair is within SAFETY times the norm of the first
+    row of the inverse matrix in it: only such neighbours are compared.
     """
-    order = np.argsort(points[:, 0], kind="stable")
-    xs = points[order, 0]
-    wrapped = np.concatenate([xs, xs[: np.searchsorted(xs, SAFETY, "right")] + side])
-    order = np.concatenate([order, order[: len(wrapped) - len(xs)]])
-    for lag in itertools.count(1):
-        close = np.flatnonzero(wrapped[lag:] - wrapped[:-lag] <= SAFETY)
+    wrap = np.asarray(periodic)
+    u = np.where(wrap, fractions % 1.0, fractions)
+    window = SAFETY * np.linalg.norm(np.linalg.inv(matrix)[0])
+    order = np.argsort(u[:, 0], kind="stable")
+    us = u[order, 0]
+    if wrap[0]:  # the points near the first side again, past the opposite one
+        extra = np.searchsorted(us, window, "right")
+        us = np.concatenate([us, us[:extra] + 1.0])
+        order = np.concatenate([order, order[:extra]])
+    lag = 1
+    while lag < len(us):
+        close = np.flatnonzero(us[lag:] - us[:-lag] <= window)
         if not len(close):
-            return
-        delta = points[order[close + lag]] - points[order[close]]
-        delta -= side * np.round(delta / side)
-        if (np.einsum("ij,ij->i", delta, delta) <= SAFETY**2).any():
-            raise GrainclassError(
-                "two seeds closer than Voro++ can separate; choose another --seed"
-            )
+            return None
+        a, b = order[close], order[close + lag]
+        delta = u[b] - u[a]
+        delta -= np.where(wrap, np.round(delta), 0.0)
+        delta = delta @ matrix.T
+        hit = np.flatnonzero((np.einsum("ij,ij->i", delta, delta) <= SAFETY**2) & (a != b))
+        if len(hit):
+            return int(a[hit[0]]), int(b[hit[0]])
+        lag += 1
+    return None
 
 
-def _tessellate_slabs(points: np.ndarray, side: float, slabs: int, margin: float) -> Iterator[dict]:
-    """Every slab's grains (:func:`_slab`), bottom to top, computed on worker processes; a slab
-    where a corner's empty sphere left the seeds present is done again with twice the margin."""
-    from grainclass.parallel import get_jobs, worker_pool
-
-    pool = worker_pool(min(get_jobs(), slabs))
-    try:
-        futures: list[Future | None] = [
-            pool.submit(_slab, points, side, k, slabs, margin) for k in range(slabs)
-        ]
-        for k, future in enumerate(futures):
-            assert future is not None
-            futures[k] = None  # the result goes once its grains are out
-            wider = margin
-            result = future.result()
-            redone = 0
-            while result["redo"]:
-                redone += 1
-                wider *= 2
-                if 2 * wider + side / slabs >= side:
-                    raise GrainclassError(
-                        f"slab {k} of {slabs} needs seeds from all around the box: "
-                        "tessellate more seeds at a time (larger slab_seeds)"
-                    )
-                result = pool.submit(_slab, points, side, k, slabs, wider).result()
-            yield result | {"redone": redone}
-    finally:
-        # A reader that stops early (a closed pipe, an error) does not wait for the other slabs.
-        pool.shutdown(wait=True, cancel_futures=True)
-
-
-def _slab(points: np.ndarray, side: float, k: int, slabs: int, margin: float) -> dict:
-    """The grains of the seeds with z in slab k of ``slabs``, from a Voro++ call on those seeds
-    and the seeds within ``margin`` of the slab (periodic in z too), walls above and below."""
-    from pyvoro2 import _core
-
-    from grainclass._kernels.loops import BAD_CORNER
-    from grainclass._kernels.voronoi import OUTSIDE, WALL, _voronoi_grains
-
-    z0, z1 = side * k / slabs, side * (k + 1) / slabs
-    low, high = z0 - margin, z1 + margin
-    lift = (points[:, 2] - low) % side
-    band = np.flatnonzero(lift < high - low)
-    band_points = points[band].copy()
-    band_points[:, 2] = low + lift[band]
-    first, last = np.searchsorted(points[:, 2], [z0, z1])  # seeds are in z order
-    inside = (band >= first) & (band < last)
-    per_block = 5.0  # seeds per Voro++ block, as pyvoro2 chooses them
-    length = (side * side * (high - low) * per_block / len(band)) ** (1 / 3)
-    blocks = tuple(max(1, round(extent / length)) for extent in (side, side, high - low))
-    with _gc_paused():
-        cells = _core.compute_box_standard(
-            band_points,
-            np.arange(len(band), dtype=np.int32),
-            ((0.0, side), (0.0, side), (low, high)),
-            blocks,
-            (True, True, False),
-            8,
-            (False, False, True),  # faces only: no corner positions, no corner adjacency
-        )
-        cells = [cell for cell in cells if inside[cell["id"]]]
-        faces = [face for cell in cells for face in cell["faces"]]
-        loops = [face["vertices"] for face in faces]
-        cell_seed = np.array([cell["id"] for cell in cells], np.int64)
-        face_offsets = offsets_from_counts([len(cell["faces"]) for cell in cells])
-        adjacent = np.array([face["adjacent_cell"] for face in faces], np.int64)
-        loop_offsets = offsets_from_counts([len(loop) for loop in loops])
-        loop_corners = np.fromiter(itertools.chain.from_iterable(loops), np.int32, loop_offsets[-1])
-        volume = np.array([cell["volume"] for cell in cells])
-        del cells, faces, loops
-    nbr_offsets = np.zeros(len(adjacent) + 1, np.int64)
-    neighbors = np.empty(len(loop_corners), np.int32)
-    area = np.empty(len(cell_seed))
-    flags = np.zeros(len(cell_seed), np.int8)
-    _voronoi_grains(
-        cell_seed,
-        face_offsets,
-        adjacent,
-        loop_offsets,
-        loop_corners,
-        band_points,
-        side,
-        low,
-        high,
-        volume,
-        nbr_offsets,
-        neighbors,
-        area,
-        flags,
-    )
-    seeds = band[cell_seed]
-    return {
-        "redo": bool((flags & (WALL | OUTSIDE)).any()),
-        "seed": seeds,
-        "face_offsets": face_offsets,
-        "pairs": np.stack([np.repeat(seeds, np.diff(face_offsets)), band[adjacent]]),
-        "nbr_offsets": nbr_offsets,
-        "neighbors": neighbors[: nbr_offsets[-1]],
-        "volume": volume,
-        "area": area,
-        "bad_corner": (flags & BAD_CORNER) != 0,
-        "flags": flags,
-    }
-
-
-def _slab_batches(
-    grains: dict, scale: float, source: str, chunk_size: int, report: VoronoiReport
+def tessellate(
+    points: Points,
+    box: Box,
+    chunk_size: int = DEFAULT_CHUNK_SIZE,
+    report: VoronoiReport | None = None,
+    ordered: bool = False,
+    checked: bool = False,
 ) -> Iterator[GrainBatch]:
-    """One slab's grains in id order, as batches; its corner counts and volume go to the
-    report."""
-    from grainclass._kernels.loops import OPEN
-    from grainclass._kernels.voronoi import GEOMETRY
+    """Batches of the Voronoi cells of ``points`` in ``box`` (Laguerre cells where the points
+    have radii), one grain per point with a cell, its ``grain_id`` the point's id.
+
+    Cells with a face on a wall (a side that is not periodic) are ``boundary``. The points are
+    checked first (:func:`check_points`: a :class:`GrainclassError` names the point; unless
+    ``checked``, where the caller did it); grains
+    come in the order of Voro++'s blocks (``ordered``: the points are in that order already).
+    A point whose Laguerre cell is empty (hidden by its neighbours' radii) has no grain; its id
+    goes to ``report.no_cell``.
+    """
+    from grainclass import _voro
+    from grainclass.parallel import get_jobs
+
+    report = report if report is not None else VoronoiReport()
+    if not checked:
+        check_points(points, box)
+    scale = _scale(box)
+    low, high = _scaled_limits(box)
+    n = len(points.xyz)
+    xyz, tilt = points.xyz * scale, None
+    # Voro++ places a point at low <= x < high; a point on the upper wall (a LAMMPS box shrunk
+    # to its atoms has some) is kept by standing that wall 1e-12 of the side further out.
+    high = tuple(
+        h if periodic else h + 1e-12 * (h - lo)
+        for lo, h, periodic in zip(low, high, box.periodic, strict=True)
+    )
+    if box.tilt is not None:  # Voro++'s tilted boxes start at 0
+        xyz, tilt = (points.xyz - np.asarray(box.low)) * scale, tuple(t * scale for t in box.tilt)
+        low, high = (0.0, 0.0, 0.0), tuple(box.lengths * scale)
+    engine = _voro.Tessellation(
+        xyz,
+        None if points.radii is None else points.radii * scale,
+        (low[0], high[0], low[1], high[1], low[2], high[2]),
+        box.periodic,
+        tuple(int(b) for b in _blocks(n, box)),
+        min(get_jobs(), max(1, n // 1000)),
+        tilt,
+    )
+    order = np.arange(n) if ordered else block_order(points.xyz, box)
+    chunks = [order[a : a + chunk_size] for a in range(0, n, chunk_size)]
+    # The next chunk's cells are computed (without the GIL) while this chunk's grains are
+    # classified and written: one engine call at a time, one chunk ahead.
+    with ThreadPoolExecutor(1, thread_name_prefix="grainclass-voro") as ahead:
+        pending = ahead.submit(engine.cells, chunks[0])
+        for k, cells in enumerate(chunks):
+            raw = pending.result()
+            if k + 1 < len(chunks):
+                pending = ahead.submit(engine.cells, chunks[k + 1])
+            batch = _batch(points, cells, raw, scale, report)
+            if len(batch):
+                yield batch
+    one_sided = engine.one_sided()
+    report.one_sided_faces += len(one_sided)
+    report.one_sided.extend(str(i) for i in points.ids[one_sided])
+
+
+def _batch(
+    points: Points, cells: np.ndarray, raw: dict, scale: float, report: VoronoiReport
+) -> GrainBatch:
+    """The grains of the points ``cells`` (indices into ``points``), from the engine's arrays
+    ``raw`` for them."""
     from grainclass.arrow import decimal_strings
 
-    if (grains["flags"] & (GEOMETRY | OPEN)).any():
+    face_counts = raw["face_counts"].astype(np.int64)
+    has_cell = face_counts > 0
+    if not has_cell.all():
+        report.no_cell.extend(str(points.ids[i]) for i in cells[~has_cell])
+        cells, face_counts = cells[has_cell], face_counts[has_cell]
+    flags = raw["flags"][has_cell]
+    if (flags & OPEN).any():
         raise GrainclassError("Voro++ returned cells whose faces do not close up; report this")
-    seeds = grains["seed"]
-    face_counts = np.diff(grains["face_offsets"])
-    nbr_counts = np.diff(grains["nbr_offsets"])
-    volume = grains["volume"] / scale**3
-    area = grains["area"] / scale**2
-    report.cells += len(seeds)
-    report.bad_corners += int(grains["bad_corner"].sum())
+    volume = raw["volume"][has_cell] / scale**3
+    boundary = (flags & WALL) != 0
+    report.cells += len(cells)
+    report.bad_corners += int(((flags & BAD_CORNER) != 0).sum())
+    report.boundary += int(boundary.sum())
     report.volume += float(volume.sum())
-    order = np.argsort(seeds, kind="stable")
-    face_starts = grains["face_offsets"][:-1]
-    nbr_starts = grains["nbr_offsets"][:-1]
-    for a in range(0, len(seeds), chunk_size):
-        cells = order[a : a + chunk_size]
-        faces = run_indices(face_starts[cells], face_counts[cells])
-        yield GrainBatch(
-            source=source,
-            grain_id=decimal_strings(seeds[cells]),
-            location=seeds[cells],
-            location_kind="record",
-            face_offsets=offsets_from_counts(face_counts[cells]),
-            nbr_offsets=offsets_from_counts(nbr_counts[faces]),
-            neighbors=grains["neighbors"][run_indices(nbr_starts[faces], nbr_counts[faces])],
-            volume=volume[cells],
-            area=area[cells],
-            boundary=np.zeros(len(cells), np.int8),  # periodic: no grain is cut
-        )
+    ids = points.ids[cells]
+    integers = ids.dtype.kind in "iu" and (ids >= 0).all()
+    return GrainBatch(
+        source=points.source,
+        grain_id=decimal_strings(ids) if integers else [str(i) for i in ids],
+        location=points.locations[cells],
+        location_kind=points.location_kind,
+        face_offsets=offsets_from_counts(face_counts),
+        nbr_offsets=offsets_from_counts(raw["loop_lengths"]),
+        neighbors=raw["adjacent"],
+        volume=volume,
+        area=raw["area"][has_cell] / scale**2,
+        boundary=boundary.astype(np.int8),
+    )

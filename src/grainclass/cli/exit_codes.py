@@ -62,8 +62,9 @@ SUMMARY = epilog(
 )
 VORONOI = epilog(
     "success",
-    "the tessellation failed (seeds Voro++ cannot separate) or its checks (then the output is "
-    "written, for a look), or the output could not be written",
+    "points that cannot be read or tessellated (nothing is written), a tessellation that failed "
+    "its checks (then the output is written, for a look), or an output that could not be "
+    "written",
 )
 CENSUS = epilog(
     "every part done, every cross-check passed",

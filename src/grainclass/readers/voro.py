@@ -1,9 +1,13 @@
 """Voro++ custom output with face-vertex loops, one cell per line.
 
-Accepted format strings (``voro++ -c FORMAT``): ``"%i %t"``, ``"%i %v %t"`` and
-``"%i %v %F %t"``: the particle id, optionally the cell volume and its total face area, then
-``%t``, each face as the parenthesised, comma-separated loop of its vertex indices, e.g.
-``7 0.0351 0.6219 (1,3,2) (1,5,4,3) ...``.
+Accepted format strings (``voro++ -c FORMAT``): ``"%i [%v [%F]] [%n] %t"``: the particle id,
+optionally the cell volume and its total face area, optionally the neighbour behind each face
+(``%n``), then ``%t``, each face as the parenthesised, comma-separated loop of its vertex
+indices, e.g. ``7 0.0351 0.6219 (1,3,2) (1,5,4,3) ...``.
+
+With ``%n``, a cell with a face on a wall of the container (a negative neighbour id: Voro++
+numbers the walls -1 to -6) is a boundary grain, and the others are not; without it, the file
+does not tell.
 """
 
 from __future__ import annotations
@@ -17,7 +21,7 @@ import numpy as np
 from grainclass.batch import GrainBatch, no_body_has
 from grainclass.readers.loops import LoopText
 
-LINE = re.compile(rb"^\s*-?\d+(\s+[-+0-9.eE]+){0,2}\s+\(\s*\d+(\s*,\s*\d+)*\s*\)")
+LINE = re.compile(rb"^\s*-?\d+(\s+[-+0-9.eE]+)*\s+\(\s*\d+(\s*,\s*\d+)*\s*\)")
 SNIFFED_LINES = 5
 
 
@@ -37,7 +41,7 @@ _AS_LOOP_TEXT = bytes.maketrans(b"(,)", b"  ;")
 
 def read_voro(lines: Iterable[bytes], source: str, chunk_size: int) -> Iterator[GrainBatch]:
     """Parse Voro++ ``%t`` output into batches of at most ``chunk_size`` cells."""
-    unreadable = "cannot read this cell: expected id [volume [area]] (loop) (loop) ..."
+    unreadable = "cannot read this cell: expected id [volume [area]] [neighbours] (loop) ..."
     rows = LoopText(source, unreadable)
     for line_no, raw in enumerate(lines, 1):
         line = raw.strip()
@@ -46,10 +50,20 @@ def read_voro(lines: Iterable[bytes], source: str, chunk_size: int) -> Iterator[
         head, paren, loops = line.partition(b"(")
         tokens = head.decode("utf-8", "replace").split()
         grain_id = tokens[0] if tokens else f"line{line_no}"
+        boundary = None
         try:
+            n_loops = loops.count(b"(") + 1
+            if paren and len(tokens) > 3:  # %n: a neighbour per face, after the numbers
+                if len(tokens) - 1 < n_loops or len(tokens) - 1 - n_loops > 2:
+                    raise ValueError(
+                        f"{len(tokens) - 1} numbers before {n_loops} loops: expected "
+                        "[volume [area]] and a neighbour (%n) per face"
+                    )
+                boundary = any(int(t) < 0 for t in tokens[-n_loops:])
+                tokens = tokens[:-n_loops]
             if not paren or not 1 <= len(tokens) <= 3:
-                raise ValueError("expected: id [volume [area]] (loop) (loop) ...")
-            if loops.count(b"(") + 1 != loops.count(b")") or not loops.endswith(b")"):
+                raise ValueError("expected: id [volume [area]] [neighbours] (loop) (loop) ...")
+            if n_loops != loops.count(b")") or not loops.endswith(b")"):
                 raise ValueError("a face loop is not closed by ')' (a cut-off line?)")
             int(tokens[0])
             numbers = [float(t) for t in tokens[1:]] + [np.nan, np.nan]
@@ -69,7 +83,7 @@ def read_voro(lines: Iterable[bytes], source: str, chunk_size: int) -> Iterator[
                 rows.add_unreadable(grain_id, line_no, f"cannot read this cell: {message}")
             else:
                 text = (paren + loops).translate(_AS_LOOP_TEXT)
-                rows.add(grain_id, line_no, text, volume, area)
+                rows.add(grain_id, line_no, text, volume, area, boundary)
         if len(rows) >= chunk_size:
             yield rows.batch()
             rows = LoopText(source, unreadable)
