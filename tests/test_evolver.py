@@ -78,6 +78,7 @@ def test_whole_foam_file_makes_every_body_a_grain(name):
         assert row["status"] == "ok"
         got = (row["n_faces"], tuple(row["p_vector"]), row["class"], row["truncations"])
         assert got == (want["n_faces"], want["p_vector"], want["class"], want["truncations"])
+        assert row["symmetry"] == want["symmetry"]
         assert row["volume"] == pytest.approx(want["volume"], rel=1e-9)
         assert row["area"] == pytest.approx(want["area"], rel=1e-8)
         assert row["isoperimetric"] == pytest.approx(
