@@ -16,7 +16,7 @@ import math
 
 import numpy as np
 
-from grainclass._numba import njit
+from grainclass._numba import at, njit, njit_leaf
 
 # Entry kinds, as the sections of a datafile: vertices, edges, facets (or faces), bodies.
 VERTEX, EDGE, FACET, BODY = 0, 1, 2, 3
@@ -83,97 +83,121 @@ _W_NAN = np.frombuffer(b"nan", np.uint8)
 _POWERS = np.array([10.0**k for k in range(23)])  # exact in float64
 
 
-@njit
-def _is_break(c):
-    """A byte that ends a line, as str.splitlines() reads ASCII: \\n, \\r, \\v, \\f, \\x1c-\\x1e."""
-    return NEWLINE <= c <= RETURN or 28 <= c <= 30
+# What each byte is to the lexer: part of a token (``#`` too, but at the start of a line, where
+# it makes the line a directive), a byte that may start a comment or join two lines, a blank
+# between tokens or a line break (as str.split() and str.splitlines() read ASCII).
+C_TOKEN, C_HASH, C_SLASH, C_BACKSLASH, C_BLANK, C_BREAK = 0, 1, 2, 3, 4, 5
+_CLASS = np.zeros(256, np.uint8)
+_CLASS[[SPACE, TAB, 31]] = C_BLANK
+_CLASS[[NEWLINE, 11, 12, RETURN, 28, 29, 30]] = C_BREAK
+_CLASS[SLASH], _CLASS[BACKSLASH], _CLASS[HASH] = C_SLASH, C_BACKSLASH, C_HASH
 
 
-@njit
-def _is_blank(c):
-    """A byte that separates tokens within a line, as str.split() reads ASCII."""
-    return c in (SPACE, TAB, 31)
-
-
-@njit
+@njit_leaf
 def _lower(c):
     return c + 32 if 65 <= c <= 90 else c
 
 
-@njit
+@njit_leaf
 def _word_is(buf, s, e, word):
     """Whether ``buf[s:e]`` is ``word`` (lower case) in any case."""
     if e - s != word.shape[0]:
         return False
     i = 0
-    while i < e - s and _lower(buf[s + i]) == word[i]:
+    while i < e - s and _lower(buf[at(s + i)]) == word[at(i)]:
         i += 1
     return i == e - s
 
 
-@njit
+@njit_leaf
 def _after_break(buf, p, end):
     """The position after the line break at ``p`` (\\r\\n is one break)."""
-    if buf[p] == RETURN and p + 1 < end and buf[p + 1] == NEWLINE:
+    if buf[at(p)] == RETURN and p + 1 < end and buf[at(p + 1)] == NEWLINE:
         return p + 2
     return p + 1
 
 
-@njit
+@njit_leaf
+def _line_end(buf, p, end):
+    """The first line break from ``p`` on (or ``end``)."""
+    while p < end and _CLASS[buf[at(p)]] != C_BREAK:
+        p += 1
+    return p
+
+
+@njit_leaf
 def _continues(buf, p, end):
     """Whether a backslash before ``p`` continues its line: only blanks, or a // comment, follow
     it on the line."""
-    while p < end and _is_blank(buf[p]):
+    while p < end and _CLASS[buf[at(p)]] == C_BLANK:
         p += 1
-    if p >= end or _is_break(buf[p]):
+    if p >= end or _CLASS[buf[at(p)]] == C_BREAK:
         return True
-    return buf[p] == SLASH and p + 1 < end and buf[p + 1] == SLASH
+    return buf[at(p)] == SLASH and p + 1 < end and buf[at(p + 1)] == SLASH
 
 
-@njit
+@njit_leaf
 def _comment_at(buf, p, end, last_close):
     """Whether a comment starts at ``p``: ``//``, or a ``/*`` that closes."""
-    if p + 1 >= end or buf[p] != SLASH:
+    if p + 1 >= end or buf[at(p)] != SLASH:
         return False
-    return buf[p + 1] == SLASH or (buf[p + 1] == STAR and p + 2 <= last_close)
+    return buf[at(p + 1)] == SLASH or (buf[at(p + 1)] == STAR and p + 2 <= last_close)
 
 
-@njit
+@njit_leaf
+def _special(buf, p, end, last_close):
+    """Whether the byte at ``p`` is not part of a token: a blank, a line break, a comment's
+    start, or a backslash that joins its line to the next."""
+    k = _CLASS[buf[at(p)]]
+    if k <= C_HASH:
+        return False
+    if k == C_SLASH:
+        return _comment_at(buf, p, end, last_close)
+    if k == C_BACKSLASH:
+        return _continues(buf, p + 1, end)
+    return True
+
+
+@njit_leaf
 def _lex_line(buf, p, end, last_close, tok_s, tok_e, line):
     """The tokens of the logical line at ``p`` into ``tok_s``/``tok_e``: ``(p after it, tokens,
     its first line number, at end of file)``; ``line[0]`` counts physical lines.
 
-    Comments go as today's text reader removes them: ``/* ... */`` (one that closes: it ends
-    before ``last_close``), its line breaks kept; ``//`` to the end of the line; a line that
-    starts with ``#`` (a directive). A backslash ending a line joins the next one to it.
+    Comments go as the text reader before these kernels removed them: ``/* ... */`` (one that
+    closes: it ends before ``last_close``), its line breaks kept; ``//`` to the end of the
+    line; a line that starts with ``#`` (a directive). A backslash ending a line joins the next
+    one to it.
     """
     ntok = 0
     first = line[0]
     line_start = True
     while p < end:
-        c = buf[p]
-        if line_start and c == HASH:
-            while p < end and not _is_break(buf[p]):
-                p += 1
-            line_start = False
-            continue
-        line_start = False
-        if _is_break(c):
-            p = _after_break(buf, p, end)
-            line[0] += 1
-            return p, ntok, first, False
-        if _is_blank(c):
+        k = _CLASS[buf[at(p)]]
+        if k == C_BLANK:
             p += 1
-            continue
-        if c == SLASH and p + 1 < end and buf[p + 1] == SLASH:
-            while p < end and not _is_break(buf[p]):
+        elif k == C_BREAK:
+            line[0] += 1
+            return _after_break(buf, p, end), ntok, first, False
+        elif k == C_HASH and line_start:  # a directive
+            p = _line_end(buf, p, end)
+        elif k <= C_HASH or not _special(buf, p, end, last_close):
+            start = p
+            p += 1
+            while p < end:
+                k = _CLASS[buf[at(p)]]
+                if k >= C_BLANK or (k >= C_SLASH and _special(buf, p, end, last_close)):
+                    break
                 p += 1
-            continue
-        if c == SLASH and p + 1 < end and buf[p + 1] == STAR and p + 2 <= last_close:
+            tok_s[at(ntok)] = start
+            tok_e[at(ntok)] = p
+            ntok += 1
+        elif k == C_SLASH and buf[at(p + 1)] == SLASH:  # a // comment
+            p = _line_end(buf, p, end)
+        elif k == C_SLASH:  # a /* ... */ comment
             q = p + 2
             breaks = 0
-            while not (buf[q] == STAR and buf[q + 1] == SLASH):
-                if _is_break(buf[q]):
+            while not (buf[at(q)] == STAR and buf[at(q + 1)] == SLASH):
+                if _CLASS[buf[at(q)]] == C_BREAK:
                     q = _after_break(buf, q, end)
                     breaks += 1
                 else:
@@ -182,32 +206,18 @@ def _lex_line(buf, p, end, last_close, tok_s, tok_e, line):
             if breaks:  # the comment's line breaks end the line, as they did
                 line[0] += breaks
                 return p, ntok, first, False
-            continue
-        if c == BACKSLASH and _continues(buf, p + 1, end):
-            while p < end and not _is_break(buf[p]):
-                p += 1
+        else:  # a backslash that joins the next line to this one
+            p = _line_end(buf, p, end)
             if p < end:
                 p = _after_break(buf, p, end)
                 line[0] += 1
                 line_start = True
-            continue
-        start = p
-        while p < end:
-            c = buf[p]
-            if _is_break(c) or _is_blank(c):
-                break
-            if c == SLASH and _comment_at(buf, p, end, last_close):
-                break
-            if c == BACKSLASH and _continues(buf, p + 1, end):
-                break
-            p += 1
-        tok_s[ntok] = start
-        tok_e[ntok] = p
-        ntok += 1
+                continue
+        line_start = False
     return p, ntok, first, True
 
 
-@njit
+@njit_leaf
 def _last_close(buf, start, end):
     """Where the last ``*/`` of ``buf[start:end]`` starts (``start - 1`` if none)."""
     for p in range(end - 2, start - 1, -1):
@@ -216,7 +226,7 @@ def _last_close(buf, start, end):
     return start - 1
 
 
-@njit
+@njit_leaf
 def _is_decimal(buf, s, e):
     p = s
     while p < e and ZERO <= buf[p] <= NINE:
@@ -224,7 +234,7 @@ def _is_decimal(buf, s, e):
     return e > s and p == e
 
 
-@njit
+@njit_leaf
 def _parse_int(buf, s, e):
     """``(ok, value)`` of an integer token: a sign, then 1 to 18 ASCII digits."""
     p = s
@@ -243,7 +253,7 @@ def _parse_int(buf, s, e):
     return True, -value if negative else value
 
 
-@njit
+@njit_leaf
 def _parse_float(buf, s, e):
     """``(status, value)`` of a number token, as Python's float() reads it: ENTRY_OK where the
     value is certain to be float()'s (a sign, digits with a point, an exponent, up to 19
@@ -315,7 +325,7 @@ def _parse_float(buf, s, e):
     return ENTRY_OK, sign * (float(mantissa) / _POWERS[-exponent])
 
 
-@njit
+@njit_leaf
 def _is_number(buf, s, e):
     """What the periods rows must be: ``[-+]?(\\d+\\.?\\d*|\\.\\d+)([eE][-+]?\\d+)?``."""
     p = s
@@ -344,7 +354,7 @@ def _is_number(buf, s, e):
     return p == e
 
 
-@njit
+@njit_leaf
 def _leading_ids(buf, tok_s, tok_e, ntok, ids, m):
     """The signed ids at the start of tokens 1.. of an entry into ``ids`` from ``m``: ``(ok,
     m after them)``. What follows them must be an attribute's name; a token that is neither
@@ -368,11 +378,11 @@ def _leading_ids(buf, tok_s, tok_e, ntok, ids, m):
     return True, m
 
 
-@njit
+@njit_leaf
 def _count_breaks(buf, start, end):
     n = 0
     for p in range(start, end):
-        if _is_break(buf[p]):
+        if _CLASS[buf[at(p)]] == C_BREAK:
             n += 1
     return n
 
@@ -626,7 +636,7 @@ def _tokenize(buf, file_starts, marker, marker_ends):
     )
 
 
-@njit
+@njit_leaf
 def _header_status(
     string_line, space_dim, space_line, surface_dim, surface_line, simplex_line, symmetry_line
 ):
@@ -647,7 +657,7 @@ def _header_status(
     return FILE_OK, 0, 0
 
 
-@njit
+@njit_leaf
 def _wrap_mark(buf, s, e):
     """A wrap mark's value: ``*`` 0, ``+`` 1, ``-`` -1; 2 for any other token."""
     if e - s != 1:
@@ -662,7 +672,7 @@ def _wrap_mark(buf, s, e):
     return 2
 
 
-@njit
+@njit_leaf
 def _words_at(buf, tok_s, tok_e, t, marker, marker_ends):
     """Whether tokens ``t, t + 1, ...`` are the marker's words, in any case."""
     begin = 0
@@ -680,44 +690,52 @@ def _words_at(buf, tok_s, tok_e, t, marker, marker_ends):
 # --- Ids to slots ---------------------------------------------------------------------------
 
 
-@njit
+@njit_leaf
 def _hash(x, mask):
     h = np.uint64(x) * np.uint64(0x9E3779B97F4A7C15)
     return np.int64((h ^ (h >> np.uint64(31))) & np.uint64(mask))
 
 
 @njit
-def _new_map(n):
-    """An empty map of up to ``n`` ids to slots (open addressing): ``(keys, slots, count)``."""
+def _new_map(n, most):
+    """An empty map of up to ``n`` ids to slots: ``(keys, slots, count, direct)``. Ids from 0
+    to ``most`` (the usual 1, 2, 3, ... of a datafile) go straight to ``direct[id]``, others
+    through open addressing in ``keys`` and ``slots``."""
     size = 16
     while size < 2 * n:
         size *= 2
-    return np.empty(size, np.int64), np.full(size, -1, np.int64), np.zeros(1, np.int64)
+    direct = np.full(most + 1 if 0 <= most <= 4 * n + 64 else 0, -1, np.int64)
+    return np.empty(size, np.int64), np.full(size, -1, np.int64), np.zeros(1, np.int64), direct
 
 
-@njit
+@njit_leaf
 def _slot(table, x, insert):
     """The slot of id ``x`` (slots count up from 0 in the order ids first come), or -1 if it
     has none and ``insert`` is False."""
-    keys, slots, count = table
+    keys, slots, count, direct = table
+    if 0 <= x < direct.shape[0]:
+        if direct[at(x)] < 0 and insert:
+            direct[at(x)] = count[0]
+            count[0] += 1
+        return direct[at(x)]
     mask = keys.shape[0] - 1
     h = _hash(x, mask)
-    while slots[h] >= 0:
-        if keys[h] == x:
-            return slots[h]
+    while slots[at(h)] >= 0:
+        if keys[at(h)] == x:
+            return slots[at(h)]
         h = (h + 1) & mask
     if not insert:
         return -1
-    keys[h], slots[h] = x, count[0]
+    keys[at(h)], slots[at(h)] = x, count[0]
     count[0] += 1
-    return slots[h]
+    return slots[at(h)]
 
 
 @njit
 def _slots(ids, extra):
     """A map with a slot for each distinct id of ``ids`` (room for ``extra`` more), and the
     slot of each."""
-    table = _new_map(ids.shape[0] + extra)
+    table = _new_map(ids.shape[0] + extra, ids.max() if ids.shape[0] else -1)
     slot = np.empty(ids.shape[0], np.int64)
     for i in range(ids.shape[0]):
         slot[i] = _slot(table, ids[i], True)
@@ -784,11 +802,13 @@ def _file_tables(f0, f1, kind, ident, line_of, status, first, last, wraps, flag,
         else:
             e_bad[e_slot[j]] = line_of[i]
     # Edges may name vertices without a line: they get keys past the vertices' slots.
+    e_tail = np.full(ne, -1, np.int64)
+    e_head = np.full(ne, -1, np.int64)
     for s in range(ne):
         i = e_entry[s]
         if i >= 0:
-            _slot(v_map, first[i], True)
-            _slot(v_map, last[i], True)
+            e_tail[s] = _slot(v_map, first[i], True)
+            e_head[s] = _slot(v_map, last[i], True)
     n_keys = v_map[2][0]
     vk_id = np.empty(n_keys, np.int64)
     vk_entry = np.full(n_keys, -1, np.int64)
@@ -803,9 +823,10 @@ def _file_tables(f0, f1, kind, ident, line_of, status, first, last, wraps, flag,
     for h in range(v_map[0].shape[0]):
         if v_map[1][h] >= nv:
             vk_id[v_map[1][h]] = v_map[0][h]
+    for h in range(v_map[3].shape[0]):
+        if v_map[3][h] >= nv:
+            vk_id[v_map[3][h]] = h
     e_id = np.empty(ne, np.int64)
-    e_tail = np.full(ne, -1, np.int64)
-    e_head = np.full(ne, -1, np.int64)
     e_wrap = np.zeros((ne, 3), np.int64)
     e_triple = np.zeros(ne, np.bool_)
     marked = False
@@ -815,8 +836,6 @@ def _file_tables(f0, f1, kind, ident, line_of, status, first, last, wraps, flag,
         i = e_entry[s]
         if i < 0:
             continue
-        e_tail[s] = _slot(v_map, first[i], False)
-        e_head[s] = _slot(v_map, last[i], False)
         for k in range(3):
             e_wrap[s, k] = wraps[i, k]
         e_triple[s] = flag[i] != 0
@@ -938,12 +957,12 @@ def _file_tables(f0, f1, kind, ident, line_of, status, first, last, wraps, flag,
 # --- One body -------------------------------------------------------------------------------
 
 
-@njit
+@njit_leaf
 def _dot3(a, b):
     return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 
 
-@njit
+@njit_leaf
 def _shifted(xyz, entry, off, periods, out):
     """A vertex's position translated by ``off`` (whole periods) into ``out``."""
     for k in range(3):
@@ -1422,7 +1441,7 @@ def _body(
     return GRAIN_OK
 
 
-@njit
+@njit_leaf
 def _root(parent, k):
     while parent[k] != k:
         parent[k] = parent[parent[k]]
@@ -1430,7 +1449,7 @@ def _root(parent, k):
     return k
 
 
-@njit
+@njit_leaf
 def _undefined_vertex(key, vertices, edges, d_edge, params):
     """GRAIN_UNDEFINED for a vertex without coordinates, named with the first edge the body
     uses that ends at it."""

@@ -22,8 +22,8 @@ files at a time; the kernels return codes, which this module turns into messages
 
 from __future__ import annotations
 
-import contextlib
 import functools
+import os
 from collections.abc import Iterable, Iterator
 from dataclasses import dataclass
 
@@ -33,13 +33,12 @@ from grainclass._kernels import evolver as kernels
 from grainclass.batch import GrainBatch, no_body_has
 from grainclass.errors import InputError
 from grainclass.geometry import polytope_measures
-from grainclass.parallel import available_cpus, worker_pool
+from grainclass.parallel import map_ordered
 from grainclass.readers.sniffing import SNIFF_BYTES, not_grains
 
 # What one entry of each section is called in messages, by the kernels' entry kinds.
 ENTRY_NAMES = ("vertex", "edge", "facet", "body")
 DEFAULT_TRIPLE_EDGES = ("color", "red")
-PARALLEL_FILES = 200  # from this many files on, a process pool reads them
 PART_FILES = 64  # files parsed by one call of the kernels
 PART_BYTES = 4 << 20  # and at most about this many bytes
 
@@ -95,26 +94,17 @@ def read_evolver(
     GrainBatch
         One grain per body: the file's stem when the file has one body, else the body id.
     """
-    paths = list(paths)
     read = functools.partial(_read_part, triple_edges=triple_edges)
-    parts = _parts(paths, max(1, min(PART_FILES, chunk_size)))
     pending: list[_Part] = []
     grains = 0
-    with contextlib.ExitStack() as stack:
-        per_part: Iterable[_Part] = map(read, parts)
-        cpus = available_cpus()
-        if len(paths) >= PARALLEL_FILES and cpus > 1:
-            # The kernels hold no GIL, but reading a file and making its rows is Python: a
-            # folder of dumps is read by one process per core.
-            pool = worker_pool(cpus)
-            stack.callback(pool.shutdown, wait=True, cancel_futures=True)
-            per_part = pool.map(read, parts)
-        for part in per_part:
-            pending.append(part)
-            grains += len(part)
-            if grains >= chunk_size:
-                yield _batch(pending)
-                pending, grains = [], 0
+    # The kernels release the GIL: the groups of files are read on as many threads as there
+    # are jobs, and come back in order.
+    for part in map_ordered(read, _parts(list(paths), max(1, min(PART_FILES, chunk_size)))):
+        pending.append(part)
+        grains += len(part)
+        if grains >= chunk_size:
+            yield _batch(pending)
+            pending, grains = [], 0
     if pending:
         yield _batch(pending)
 
@@ -126,7 +116,7 @@ def _parts(paths: list[str], most: int) -> list[list[str]]:
     size = 0
     for path in paths:
         try:
-            length = _file_size(path)
+            length = os.stat(path).st_size
         except OSError:
             length = 0  # its reading says what is wrong
         if part and (len(part) >= most or size + length > PART_BYTES):
@@ -137,12 +127,6 @@ def _parts(paths: list[str], most: int) -> list[list[str]]:
     if part:
         parts.append(part)
     return parts
-
-
-def _file_size(path: str) -> int:
-    import os
-
-    return os.stat(path).st_size
 
 
 def _read_part(paths: list[str], triple_edges: tuple[str, str]) -> _Part:
