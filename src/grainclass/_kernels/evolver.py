@@ -93,62 +93,62 @@ _CLASS[[NEWLINE, 11, 12, RETURN, 28, 29, 30]] = C_BREAK
 _CLASS[SLASH], _CLASS[BACKSLASH], _CLASS[HASH] = C_SLASH, C_BACKSLASH, C_HASH
 
 
-@njit_leaf
+@njit_leaf(no_cpython_wrapper=True)
 def _lower(c):
     return c + 32 if 65 <= c <= 90 else c
 
 
-@njit_leaf
+@njit_leaf(no_cpython_wrapper=True)
 def _word_is(buf, s, e, word):
     """Whether ``buf[s:e]`` is ``word`` (lower case) in any case."""
     if e - s != word.shape[0]:
         return False
     i = 0
-    while i < e - s and _lower(buf[at(s + i)]) == word[at(i)]:
+    while i < e - s and _lower(buf[s + i]) == word[i]:
         i += 1
     return i == e - s
 
 
-@njit_leaf
+@njit_leaf(no_cpython_wrapper=True)
 def _after_break(buf, p, end):
     """The position after the line break at ``p`` (\\r\\n is one break)."""
-    if buf[at(p)] == RETURN and p + 1 < end and buf[at(p + 1)] == NEWLINE:
+    if buf[p] == RETURN and p + 1 < end and buf[p + 1] == NEWLINE:
         return p + 2
     return p + 1
 
 
-@njit_leaf
+@njit_leaf(no_cpython_wrapper=True)
 def _line_end(buf, p, end):
     """The first line break from ``p`` on (or ``end``)."""
-    while p < end and _CLASS[buf[at(p)]] != C_BREAK:
+    while p < end and _CLASS[buf[p]] != C_BREAK:
         p += 1
     return p
 
 
-@njit_leaf
+@njit_leaf(no_cpython_wrapper=True)
 def _continues(buf, p, end):
     """Whether a backslash before ``p`` continues its line: only blanks, or a // comment, follow
     it on the line."""
-    while p < end and _CLASS[buf[at(p)]] == C_BLANK:
+    while p < end and _CLASS[buf[p]] == C_BLANK:
         p += 1
-    if p >= end or _CLASS[buf[at(p)]] == C_BREAK:
+    if p >= end or _CLASS[buf[p]] == C_BREAK:
         return True
-    return buf[at(p)] == SLASH and p + 1 < end and buf[at(p + 1)] == SLASH
+    return buf[p] == SLASH and p + 1 < end and buf[p + 1] == SLASH
 
 
-@njit_leaf
+@njit_leaf(no_cpython_wrapper=True)
 def _comment_at(buf, p, end, last_close):
     """Whether a comment starts at ``p``: ``//``, or a ``/*`` that closes."""
-    if p + 1 >= end or buf[at(p)] != SLASH:
+    if p + 1 >= end or buf[p] != SLASH:
         return False
-    return buf[at(p + 1)] == SLASH or (buf[at(p + 1)] == STAR and p + 2 <= last_close)
+    return buf[p + 1] == SLASH or (buf[p + 1] == STAR and p + 2 <= last_close)
 
 
-@njit_leaf
+@njit_leaf(no_cpython_wrapper=True)
 def _special(buf, p, end, last_close):
     """Whether the byte at ``p`` is not part of a token: a blank, a line break, a comment's
     start, or a backslash that joins its line to the next."""
-    k = _CLASS[buf[at(p)]]
+    k = _CLASS[buf[p]]
     if k <= C_HASH:
         return False
     if k == C_SLASH:
@@ -158,7 +158,7 @@ def _special(buf, p, end, last_close):
     return True
 
 
-@njit_leaf
+@njit_leaf(no_cpython_wrapper=True)
 def _lex_line(buf, p, end, last_close, tok_s, tok_e, line):
     """The tokens of the logical line at ``p`` into ``tok_s``/``tok_e``: ``(p after it, tokens,
     its first line number, at end of file)``; ``line[0]`` counts physical lines.
@@ -188,16 +188,16 @@ def _lex_line(buf, p, end, last_close, tok_s, tok_e, line):
                 if k >= C_BLANK or (k >= C_SLASH and _special(buf, p, end, last_close)):
                     break
                 p += 1
-            tok_s[at(ntok)] = start
-            tok_e[at(ntok)] = p
+            tok_s[ntok] = start
+            tok_e[ntok] = p
             ntok += 1
-        elif k == C_SLASH and buf[at(p + 1)] == SLASH:  # a // comment
+        elif k == C_SLASH and buf[p + 1] == SLASH:  # a // comment
             p = _line_end(buf, p, end)
         elif k == C_SLASH:  # a /* ... */ comment
             q = p + 2
             breaks = 0
-            while not (buf[at(q)] == STAR and buf[at(q + 1)] == SLASH):
-                if _CLASS[buf[at(q)]] == C_BREAK:
+            while not (buf[q] == STAR and buf[q + 1] == SLASH):
+                if _CLASS[buf[q]] == C_BREAK:
                     q = _after_break(buf, q, end)
                     breaks += 1
                 else:
@@ -217,7 +217,7 @@ def _lex_line(buf, p, end, last_close, tok_s, tok_e, line):
     return p, ntok, first, True
 
 
-@njit_leaf
+@njit_leaf(no_cpython_wrapper=True)
 def _last_close(buf, start, end):
     """Where the last ``*/`` of ``buf[start:end]`` starts (``start - 1`` if none)."""
     for p in range(end - 2, start - 1, -1):
@@ -226,7 +226,7 @@ def _last_close(buf, start, end):
     return start - 1
 
 
-@njit_leaf
+@njit_leaf(no_cpython_wrapper=True)
 def _is_decimal(buf, s, e):
     p = s
     while p < e and ZERO <= buf[p] <= NINE:
@@ -234,7 +234,7 @@ def _is_decimal(buf, s, e):
     return e > s and p == e
 
 
-@njit_leaf
+@njit_leaf(no_cpython_wrapper=True)
 def _parse_int(buf, s, e):
     """``(ok, value)`` of an integer token: a sign, then 1 to 18 ASCII digits."""
     p = s
@@ -325,7 +325,7 @@ def _parse_float(buf, s, e):
     return ENTRY_OK, sign * (float(mantissa) / _POWERS[-exponent])
 
 
-@njit_leaf
+@njit_leaf(no_cpython_wrapper=True)
 def _is_number(buf, s, e):
     """What the periods rows must be: ``[-+]?(\\d+\\.?\\d*|\\.\\d+)([eE][-+]?\\d+)?``."""
     p = s
@@ -354,7 +354,7 @@ def _is_number(buf, s, e):
     return p == e
 
 
-@njit_leaf
+@njit_leaf(no_cpython_wrapper=True)
 def _leading_ids(buf, tok_s, tok_e, ntok, ids, m):
     """The signed ids at the start of tokens 1.. of an entry into ``ids`` from ``m``: ``(ok,
     m after them)``. What follows them must be an attribute's name; a token that is neither
@@ -378,11 +378,11 @@ def _leading_ids(buf, tok_s, tok_e, ntok, ids, m):
     return True, m
 
 
-@njit_leaf
+@njit_leaf(no_cpython_wrapper=True)
 def _count_breaks(buf, start, end):
     n = 0
     for p in range(start, end):
-        if _CLASS[buf[at(p)]] == C_BREAK:
+        if _CLASS[buf[p]] == C_BREAK:
             n += 1
     return n
 
@@ -636,7 +636,7 @@ def _tokenize(buf, file_starts, marker, marker_ends):
     )
 
 
-@njit_leaf
+@njit_leaf(no_cpython_wrapper=True)
 def _header_status(
     string_line, space_dim, space_line, surface_dim, surface_line, simplex_line, symmetry_line
 ):
@@ -657,7 +657,7 @@ def _header_status(
     return FILE_OK, 0, 0
 
 
-@njit_leaf
+@njit_leaf(no_cpython_wrapper=True)
 def _wrap_mark(buf, s, e):
     """A wrap mark's value: ``*`` 0, ``+`` 1, ``-`` -1; 2 for any other token."""
     if e - s != 1:
@@ -672,7 +672,7 @@ def _wrap_mark(buf, s, e):
     return 2
 
 
-@njit_leaf
+@njit_leaf(no_cpython_wrapper=True)
 def _words_at(buf, tok_s, tok_e, t, marker, marker_ends):
     """Whether tokens ``t, t + 1, ...`` are the marker's words, in any case."""
     begin = 0
@@ -690,13 +690,13 @@ def _words_at(buf, tok_s, tok_e, t, marker, marker_ends):
 # --- Ids to slots ---------------------------------------------------------------------------
 
 
-@njit_leaf
+@njit_leaf(no_cpython_wrapper=True)
 def _hash(x, mask):
     h = np.uint64(x) * np.uint64(0x9E3779B97F4A7C15)
     return np.int64((h ^ (h >> np.uint64(31))) & np.uint64(mask))
 
 
-@njit
+@njit(no_cpython_wrapper=True)
 def _new_map(n, most):
     """An empty map of up to ``n`` ids to slots: ``(keys, slots, count, direct)``. Ids from 0
     to ``most`` (the usual 1, 2, 3, ... of a datafile) go straight to ``direct[id]``, others
@@ -708,30 +708,30 @@ def _new_map(n, most):
     return np.empty(size, np.int64), np.full(size, -1, np.int64), np.zeros(1, np.int64), direct
 
 
-@njit_leaf
+@njit_leaf(no_cpython_wrapper=True)
 def _slot(table, x, insert):
     """The slot of id ``x`` (slots count up from 0 in the order ids first come), or -1 if it
     has none and ``insert`` is False."""
     keys, slots, count, direct = table
     if 0 <= x < direct.shape[0]:
-        if direct[at(x)] < 0 and insert:
-            direct[at(x)] = count[0]
+        if direct[x] < 0 and insert:
+            direct[x] = count[0]
             count[0] += 1
-        return direct[at(x)]
+        return direct[x]
     mask = keys.shape[0] - 1
     h = _hash(x, mask)
-    while slots[at(h)] >= 0:
-        if keys[at(h)] == x:
-            return slots[at(h)]
+    while slots[h] >= 0:
+        if keys[h] == x:
+            return slots[h]
         h = (h + 1) & mask
     if not insert:
         return -1
-    keys[at(h)], slots[at(h)] = x, count[0]
+    keys[h], slots[h] = x, count[0]
     count[0] += 1
-    return slots[at(h)]
+    return slots[h]
 
 
-@njit
+@njit(no_cpython_wrapper=True)
 def _slots(ids, extra):
     """A map with a slot for each distinct id of ``ids`` (room for ``extra`` more), and the
     slot of each."""
@@ -742,20 +742,21 @@ def _slots(ids, extra):
     return table, slot
 
 
-@njit
+@njit(no_cpython_wrapper=True)
 def _reserve(a, need):
     """``a``, or a copy twice as long, so that it holds ``need`` items."""
     if a.shape[0] >= need:
         return a
     b = np.empty(max(need, 2 * a.shape[0]), a.dtype)
-    b[: a.shape[0]] = a
+    for i in range(a.shape[0]):
+        b[i] = a[i]
     return b
 
 
 # --- Whole files ----------------------------------------------------------------------------
 
 
-@njit
+@njit(no_cpython_wrapper=True)
 def _rows_of(kind, f0, f1, k):
     """The entries of kind ``k`` among ``f0:f1``, in order."""
     count = 0
@@ -770,7 +771,7 @@ def _rows_of(kind, f0, f1, k):
     return rows
 
 
-@njit
+@njit(no_cpython_wrapper=True)
 def _file_tables(f0, f1, kind, ident, line_of, status, first, last, wraps, flag, ids):
     """What the bodies of one file (entries ``f0:f1``) need, by slot (one per distinct id):
 
@@ -957,12 +958,12 @@ def _file_tables(f0, f1, kind, ident, line_of, status, first, last, wraps, flag,
 # --- One body -------------------------------------------------------------------------------
 
 
-@njit_leaf
+@njit_leaf(no_cpython_wrapper=True)
 def _dot3(a, b):
     return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 
 
-@njit_leaf
+@njit_leaf(no_cpython_wrapper=True)
 def _shifted(xyz, entry, off, periods, out):
     """A vertex's position translated by ``off`` (whole periods) into ``out``."""
     for k in range(3):
@@ -971,7 +972,7 @@ def _shifted(xyz, entry, off, periods, out):
         )
 
 
-@njit
+@njit(no_cpython_wrapper=True)
 def _pair_around(
     rule,
     stamp,
@@ -998,6 +999,10 @@ def _pair_around(
     pos_start, p_facet, _, _, p_sign, p_tail, p_L, p_B = positions
     fs_stamp, _, fs_plus, fs_minus = stamps[0], stamps[1], stamps[2], stamps[3]
     point = np.empty(3)
+    tail = np.empty(3)
+    along = np.empty(3)
+    centre = np.empty(3)
+    nowhere = np.zeros(3, np.int64)
     for local in range(el_slot.shape[0]):
         if el_count[local] <= 2:
             continue
@@ -1008,11 +1013,10 @@ def _pair_around(
             return False, local, e_tail[es]
         if vk_entry[e_head[es]] < 0:
             return False, local, e_head[es]
-        tail = np.empty(3)
-        _shifted(xyz, vk_entry[e_tail[es]], np.zeros(3, np.int64), periods, tail)
-        head = np.empty(3)
-        _shifted(xyz, vk_entry[e_head[es]], e_wrap[es], periods, head)
-        along = head - tail
+        _shifted(xyz, vk_entry[e_tail[es]], nowhere, periods, tail)
+        _shifted(xyz, vk_entry[e_head[es]], e_wrap[es], periods, along)
+        for x in range(3):
+            along[x] -= tail[x]
         along2 = _dot3(along, along)
         # The direction from the edge into each facet that uses it (its centre, in its frame).
         into = np.empty((k, 3))
@@ -1020,32 +1024,34 @@ def _pair_around(
             q = uses[u0 + c]
             g = p_facet[q]
             a, b = pos_start[g], pos_start[g + 1]
-            centre = np.zeros(3)
+            centre[0] = centre[1] = centre[2] = 0.0
             for r in range(a, b):
                 if vk_entry[p_tail[r]] < 0:
                     return False, local, p_tail[r]
                 _shifted(xyz, vk_entry[p_tail[r]], p_L[r], periods, point)
-                centre += point
-            centre /= b - a
+                for x in range(3):
+                    centre[x] += point[x] / (b - a)
             _shifted(xyz, vk_entry[e_tail[es]], p_B[q], periods, point)
-            r_vec = centre - point
-            into[c] = r_vec - _dot3(r_vec, along) / along2 * along
+            for x in range(3):
+                centre[x] -= point[x]
+            height = _dot3(centre, along) / along2
+            for x in range(3):
+                into[c, x] = centre[x] - height * along[x]
         for w in range(el_start[local], el_start[local + 1]):
             d = el_darts[w]
             mine = -1
             for c in range(k):
                 if uses[u0 + c] == d_pos[d]:
                     mine = c
-            axis = along * d_dir[d]
             best, best_angle = -1, 0.0
             for c in range(k):
                 if c == mine:
                     continue
                 u, v = into[mine], into[c]
-                turn = (
-                    (u[1] * v[2] - u[2] * v[1]) * axis[0]
-                    + (u[2] * v[0] - u[0] * v[2]) * axis[1]
-                    + (u[0] * v[1] - u[1] * v[0]) * axis[2]
+                turn = d_dir[d] * (
+                    (u[1] * v[2] - u[2] * v[1]) * along[0]
+                    + (u[2] * v[0] - u[0] * v[2]) * along[1]
+                    + (u[0] * v[1] - u[1] * v[0]) * along[2]
                 )
                 angle = math.atan2(turn / math.sqrt(along2), _dot3(u, v))
                 if angle <= 0.0:
@@ -1063,8 +1069,8 @@ def _pair_around(
             if o < 0:
                 return False, local, -1
             size = pos_start[g + 1] - pos_start[g]
-            at = q - pos_start[g]
-            partner[d] = occ_d[o] + (at if occ_sign[o] > 0 else size - 1 - at)
+            offset = q - pos_start[g]
+            partner[d] = occ_d[o] + (offset if occ_sign[o] > 0 else size - 1 - offset)
         for w in range(el_start[local], el_start[local + 1]):
             d = el_darts[w]
             if partner[partner[d]] != d:
@@ -1072,7 +1078,7 @@ def _pair_around(
     return True, -1, -1
 
 
-@njit
+@njit(no_cpython_wrapper=True)
 def _body(
     j, entry, ids, first, last, xyz, periodic, periods, marked, many, tables, stamps, stamp, out
 ):
@@ -1093,7 +1099,8 @@ def _body(
     pos_start, _, p_edge, p_edge_id, p_sign, p_tail, p_L, p_B = positions
     fs_stamp, fs_count, fs_plus, fs_minus, es_stamp, es_local, vk_stamp, vk_first = stamps
     params, counts, nbr_counts, neighbours, position, corners, sizes = out
-    params[:] = 0
+    for k in range(5):
+        params[k] = 0
     a0, m = first[entry], last[entry] - first[entry]
     occ_slot = np.empty(m, np.int64)
     occ_sign = np.empty(m, np.int64)
@@ -1209,14 +1216,16 @@ def _body(
             ambiguous = True
     if ambiguous:
         darts = (d_occ, d_pos, d_dir, occ_d, occ_sign)
-        local_edges = (el_slot, el_count, el_start, el_darts)
-        ok, failed, key = _pair_around(
-            1, stamp, darts, partner, local_edges, tables, stamps, xyz, periods
-        )
-        if not ok and key < 0:
-            ok, failed, key = _pair_around(
-                -1, stamp, darts, partner, local_edges, tables, stamps, xyz, periods
-            )
+        local = (el_slot, el_count, el_start, el_darts)
+        ok, failed, key = False, -1, -1
+        for attempt in range(2):  # outward lists, then inward ones
+            if attempt == 0 or key < 0:
+                rule = 1 - 2 * attempt
+                ok, failed, key = _pair_around(
+                    rule, stamp, darts, partner, local, tables, stamps, xyz, periods
+                )
+            if ok:
+                break
         if not ok:
             if key >= 0:
                 return _undefined_vertex(key, vertices, edges, d_edge, params)
@@ -1326,7 +1335,9 @@ def _body(
             if length > 0:
                 normal[o] /= length
     # Faces: patches joined across edges that are not triple lines.
-    parent = np.arange(m)
+    parent = np.empty(m, np.int64)
+    for o in range(m):
+        parent[o] = o
     for d in range(n_darts):
         p = partner[d]
         if p < d:
@@ -1435,13 +1446,14 @@ def _body(
                 boundary = 1
     for o in range(m):
         sizes[o] = occ_d[o + 1] - occ_d[o]
-    corners[:n_darts] = d_tail
+    for d in range(n_darts):
+        corners[d] = d_tail[d]
     counts[0], counts[1], counts[2], counts[3] = n_faces, n_nbrs, n_lv, n_darts
     counts[4], counts[5] = m, boundary
     return GRAIN_OK
 
 
-@njit_leaf
+@njit_leaf(no_cpython_wrapper=True)
 def _root(parent, k):
     while parent[k] != k:
         parent[k] = parent[parent[k]]
@@ -1449,7 +1461,7 @@ def _root(parent, k):
     return k
 
 
-@njit_leaf
+@njit_leaf(no_cpython_wrapper=True)
 def _undefined_vertex(key, vertices, edges, d_edge, params):
     """GRAIN_UNDEFINED for a vertex without coordinates, named with the first edge the body
     uses that ends at it."""
@@ -1510,7 +1522,7 @@ def _assemble(
     g_faces = np.zeros(cap, np.int64)
     nbr_counts = np.empty(1024, np.int64)
     neighbours = np.empty(4096, np.int32)
-    position = np.empty((1024, 3), np.float64)
+    position = np.empty(3 * 1024, np.float64)  # x, y, z of each corner in turn
     corners = np.empty(4096, np.int64)
     loop_sizes = np.empty(1024, np.int64)
     loop_grain = np.empty(1024, np.int64)
@@ -1583,7 +1595,8 @@ def _assemble(
                 out,
             )
             g_code[n_g] = code
-            g_params[n_g] = out[0]
+            for k in range(5):
+                g_params[n_g, k] = out[0][k]
             if code == GRAIN_OK:
                 faces, nbrs, points = counts[0], counts[1], counts[2]
                 uses, patches = counts[3], counts[4]
@@ -1592,24 +1605,27 @@ def _assemble(
                 g_boundary[n_g] = counts[5]
                 g_faces[n_g] = faces
                 nbr_counts = _reserve(nbr_counts, n_f + faces)
-                nbr_counts[n_f : n_f + faces] = out[2][:faces]
+                for k in range(faces):
+                    nbr_counts[n_f + k] = out[2][k]
                 n_f += faces
                 neighbours = _reserve(neighbours, n_nb + nbrs)
-                neighbours[n_nb : n_nb + nbrs] = out[3][:nbrs]
+                for k in range(nbrs):
+                    neighbours[n_nb + k] = out[3][k]
                 n_nb += nbrs
-                if position.shape[0] < n_pos + points:
-                    grown = np.empty((max(n_pos + points, 2 * position.shape[0]), 3))
-                    grown[:n_pos] = position[:n_pos]
-                    position = grown
-                position[n_pos : n_pos + points] = out[4][:points]
+                position = _reserve(position, 3 * (n_pos + points))
+                for k in range(points):
+                    for x in range(3):
+                        position[3 * (n_pos + k) + x] = out[4][k, x]
                 corners = _reserve(corners, n_c + uses)
-                corners[n_c : n_c + uses] = out[5][:uses] + n_pos
+                for k in range(uses):
+                    corners[n_c + k] = out[5][k] + n_pos
                 n_c += uses
                 n_pos += points
                 loop_sizes = _reserve(loop_sizes, n_loops + patches)
                 loop_grain = _reserve(loop_grain, n_loops + patches)
-                loop_sizes[n_loops : n_loops + patches] = out[6][:patches]
-                loop_grain[n_loops : n_loops + patches] = n_g
+                for k in range(patches):
+                    loop_sizes[n_loops + k] = out[6][k]
+                    loop_grain[n_loops + k] = n_g
                 n_loops += patches
             n_g += 1
     return (
@@ -1624,7 +1640,7 @@ def _assemble(
         g_faces[:n_g],
         nbr_counts[:n_f],
         neighbours[:n_nb],
-        position[:n_pos],
+        position[: 3 * n_pos].reshape((n_pos, 3)),
         corners[:n_c],
         loop_sizes[:n_loops],
         loop_grain[:n_loops],
