@@ -418,6 +418,7 @@ def _tokenize(buf, file_starts, marker, marker_ends):
     slow_slot = np.empty(4 * lines_bound + 9 * n_files, np.int8)
     slow_s = np.empty(4 * lines_bound + 9 * n_files, np.int64)
     slow_e = np.empty(4 * lines_bound + 9 * n_files, np.int64)
+    slow = (slow_entry, slow_slot, slow_s, slow_e)
     file_status = np.zeros(n_files, np.int8)
     file_line = np.zeros(n_files, np.int64)
     file_aux = np.zeros((n_files, 3), np.int64)
@@ -435,7 +436,6 @@ def _tokenize(buf, file_starts, marker, marker_ends):
     n = 0
     m = 0
     n_slow = 0
-    n_words = marker_ends.shape[0]
     for f in range(n_files):
         start, end = file_starts[f], file_starts[f + 1]
         if end - start >= 3 and buf[start] == 0xEF and buf[start + 1] == 0xBB:
@@ -474,10 +474,8 @@ def _tokenize(buf, file_starts, marker, marker_ends):
                         else:
                             code, value = _parse_float(buf, s, e)
                             if code == ENTRY_SLOW:
-                                slow_entry[n_slow] = f
-                                slow_slot[n_slow] = SLOW_PERIOD + period_values
-                                slow_s[n_slow], slow_e[n_slow] = s, e
-                                n_slow += 1
+                                slot = SLOW_PERIOD + period_values
+                                n_slow = _slow_number(slow, n_slow, f, slot, s, e)
                             periods[f, period_values // 3, period_values % 3] = value
                         period_values += 1
                 period_lines -= 1
@@ -498,62 +496,41 @@ def _tokenize(buf, file_starts, marker, marker_ends):
                 kind[n], ident[n], line_of[n], status[n] = section, value, number, ENTRY_OK
                 flag[n] = 0
                 if section == VERTEX:
-                    if ntok < 4:
-                        status[n] = ENTRY_BAD
-                    else:
-                        for k in range(3):
-                            code, value_f = _parse_float(buf, tok_s[k + 1], tok_e[k + 1])
-                            xyz[n, k] = value_f
-                            if code == ENTRY_BAD:
-                                status[n] = ENTRY_BAD
-                            elif code == ENTRY_SLOW and status[n] != ENTRY_BAD:
-                                status[n] = ENTRY_SLOW
-                                slow_entry[n_slow], slow_slot[n_slow] = n, k
-                                slow_s[n_slow], slow_e[n_slow] = tok_s[k + 1], tok_e[k + 1]
-                                n_slow += 1
+                    n_slow = _vertex_entry(buf, tok_s, tok_e, ntok, n, status, xyz, slow, n_slow)
                 elif section == EDGE:
-                    ok_t, tail = _parse_int(buf, tok_s[1], tok_e[1]) if ntok > 1 else (False, 0)
-                    ok_h, head = _parse_int(buf, tok_s[2], tok_e[2]) if ntok > 2 else (False, 0)
-                    first[n], last[n] = tail, head
-                    wraps[n, 0] = wraps[n, 1] = wraps[n, 2] = 0
-                    if not (ok_t and ok_h):
-                        status[n] = ENTRY_BAD
-                    elif periodic[f] and ntok >= 6 and _wrap_mark(buf, tok_s[3], tok_e[3]) < 2:
-                        for k in range(3):
-                            mark = _wrap_mark(buf, tok_s[3 + k], tok_e[3 + k])
-                            if mark == 2:
-                                status[n] = ENTRY_BAD
-                            else:
-                                wraps[n, k] = mark
-                    if ntok > 4 and n_words > 0:
-                        for t in range(3, ntok - n_words + 1):
-                            if _words_at(buf, tok_s, tok_e, t, marker, marker_ends):
-                                flag[n] = 1
-                                break
+                    _edge_entry(
+                        buf,
+                        tok_s,
+                        tok_e,
+                        ntok,
+                        n,
+                        periodic[f],
+                        marker,
+                        marker_ends,
+                        status,
+                        first,
+                        last,
+                        wraps,
+                        flag,
+                    )
                 else:
-                    first[n] = m
-                    ok, m = _leading_ids(buf, tok_s, tok_e, ntok, ids, m)
-                    last[n] = m
-                    if not ok or m - first[n] < (3 if section == FACET else 1):
-                        status[n] = ENTRY_BAD
-                    if section == BODY:
-                        xyz[n, 0] = np.nan
-                        for t in range(1, ntok):
-                            if _word_is(buf, tok_s[t], tok_e[t], _W_VOLUME):
-                                if t + 1 >= ntok:
-                                    status[n] = ENTRY_BAD
-                                    break
-                                code, value_f = _parse_float(buf, tok_s[t + 1], tok_e[t + 1])
-                                xyz[n, 0] = value_f
-                                flag[n] = 1
-                                if code == ENTRY_BAD:
-                                    status[n] = ENTRY_BAD
-                                elif code == ENTRY_SLOW and status[n] != ENTRY_BAD:
-                                    status[n] = ENTRY_SLOW
-                                    slow_entry[n_slow], slow_slot[n_slow] = n, SLOW_VOLUME
-                                    slow_s[n_slow], slow_e[n_slow] = tok_s[t + 1], tok_e[t + 1]
-                                    n_slow += 1
-                                break
+                    m, n_slow = _list_entry(
+                        buf,
+                        tok_s,
+                        tok_e,
+                        ntok,
+                        n,
+                        section,
+                        ids,
+                        m,
+                        status,
+                        first,
+                        last,
+                        xyz,
+                        flag,
+                        slow,
+                        n_slow,
+                    )
                 n += 1
                 continue
             # A keyword line.
@@ -634,6 +611,89 @@ def _tokenize(buf, file_starts, marker, marker_ends):
         entry_end,
         facets_line,
     )
+
+
+@njit_leaf(no_cpython_wrapper=True)
+def _slow_number(slow, n_slow, entry, slot, s, e):
+    """Note a number left to Python's float(): token ``buf[s:e]``, for ``slot`` of ``entry``."""
+    slow_entry, slow_slot, slow_s, slow_e = slow
+    slow_entry[n_slow], slow_slot[n_slow], slow_s[n_slow], slow_e[n_slow] = entry, slot, s, e
+    return n_slow + 1
+
+
+@njit_leaf(no_cpython_wrapper=True)
+def _vertex_entry(buf, tok_s, tok_e, ntok, n, status, xyz, slow, n_slow):
+    """A vertex line's coordinates (tokens 1 to 3) into ``xyz[n]``; returns ``n_slow``."""
+    if ntok < 4:
+        status[n] = ENTRY_BAD
+        return n_slow
+    for k in range(3):
+        code, value = _parse_float(buf, tok_s[k + 1], tok_e[k + 1])
+        xyz[n, k] = value
+        if code == ENTRY_BAD:
+            status[n] = ENTRY_BAD
+        elif code == ENTRY_SLOW and status[n] != ENTRY_BAD:
+            status[n] = ENTRY_SLOW
+            n_slow = _slow_number(slow, n_slow, n, k, tok_s[k + 1], tok_e[k + 1])
+    return n_slow
+
+
+@njit_leaf(no_cpython_wrapper=True)
+def _edge_entry(
+    buf, tok_s, tok_e, ntok, n, periodic, marker, marker_ends, status, first, last, wraps, flag
+):
+    """An edge line: tail and head ids, three wrap marks (a periodic file's), the triple-line
+    mark (``marker``'s words among the attributes)."""
+    ok_t, tail = _parse_int(buf, tok_s[1], tok_e[1]) if ntok > 1 else (False, 0)
+    ok_h, head = _parse_int(buf, tok_s[2], tok_e[2]) if ntok > 2 else (False, 0)
+    first[n], last[n] = tail, head
+    wraps[n, 0] = wraps[n, 1] = wraps[n, 2] = 0
+    if not (ok_t and ok_h):
+        status[n] = ENTRY_BAD
+    elif periodic and ntok >= 6 and _wrap_mark(buf, tok_s[3], tok_e[3]) < 2:
+        for k in range(3):
+            mark = _wrap_mark(buf, tok_s[3 + k], tok_e[3 + k])
+            if mark == 2:
+                status[n] = ENTRY_BAD
+            else:
+                wraps[n, k] = mark
+    words = marker_ends.shape[0]
+    if ntok > 4 and words > 0:
+        for t in range(3, ntok - words + 1):
+            if _words_at(buf, tok_s, tok_e, t, marker, marker_ends):
+                flag[n] = 1
+                break
+
+
+@njit_leaf(no_cpython_wrapper=True)
+def _list_entry(
+    buf, tok_s, tok_e, ntok, n, section, ids, m, status, first, last, xyz, flag, slow, n_slow
+):
+    """A facet's or a body's line: its signed ids into ``ids[m:]`` (three or more for a facet,
+    one or more for a body), and a body's ``volume``. Returns ``(m, n_slow)``."""
+    first[n] = m
+    ok, m = _leading_ids(buf, tok_s, tok_e, ntok, ids, m)
+    last[n] = m
+    if not ok or m - first[n] < (3 if section == FACET else 1):
+        status[n] = ENTRY_BAD
+    if section != BODY:
+        return m, n_slow
+    xyz[n, 0] = np.nan
+    for t in range(1, ntok):
+        if _word_is(buf, tok_s[t], tok_e[t], _W_VOLUME):
+            if t + 1 >= ntok:
+                status[n] = ENTRY_BAD
+                break
+            code, value = _parse_float(buf, tok_s[t + 1], tok_e[t + 1])
+            xyz[n, 0] = value
+            flag[n] = 1
+            if code == ENTRY_BAD:
+                status[n] = ENTRY_BAD
+            elif code == ENTRY_SLOW and status[n] != ENTRY_BAD:
+                status[n] = ENTRY_SLOW
+                n_slow = _slow_number(slow, n_slow, n, SLOW_VOLUME, tok_s[t + 1], tok_e[t + 1])
+            break
+    return m, n_slow
 
 
 @njit_leaf(no_cpython_wrapper=True)
@@ -735,7 +795,10 @@ def _slot(table, x, insert):
 def _slots(ids, extra):
     """A map with a slot for each distinct id of ``ids`` (room for ``extra`` more), and the
     slot of each."""
-    table = _new_map(ids.shape[0] + extra, ids.max() if ids.shape[0] else -1)
+    most = -1
+    for i in range(ids.shape[0]):
+        most = max(most, ids[i])
+    table = _new_map(ids.shape[0] + extra, most)
     slot = np.empty(ids.shape[0], np.int64)
     for i in range(ids.shape[0]):
         slot[i] = _slot(table, ids[i], True)
@@ -1332,8 +1395,8 @@ def _body(
                 normal[o, 1] += pa[2] * pb[0] - pa[0] * pb[2]
                 normal[o, 2] += pa[0] * pb[1] - pa[1] * pb[0]
             length = math.sqrt(_dot3(normal[o], normal[o]))
-            if length > 0:
-                normal[o] /= length
+            for x in range(3):
+                normal[o, x] = normal[o, x] / length if length > 0 else 0.0
     # Faces: patches joined across edges that are not triple lines.
     parent = np.empty(m, np.int64)
     for o in range(m):
