@@ -109,9 +109,9 @@ def read_evolver(
         yield _batch(pending)
 
 
-def _parts(paths: list[str], most: int) -> list[list[str]]:
-    """Consecutive files, up to ``most`` of them and about PART_BYTES, for one kernel call."""
-    parts: list[list[str]] = []
+def _parts(paths: list[str], most: int) -> Iterator[list[str]]:
+    """Consecutive files, up to ``most`` of them and about PART_BYTES, for one kernel call
+    (made as the reading goes: a step of a simulation has hundreds of thousands of files)."""
     part: list[str] = []
     size = 0
     for path in paths:
@@ -120,33 +120,60 @@ def _parts(paths: list[str], most: int) -> list[list[str]]:
         except OSError:
             length = 0  # its reading says what is wrong
         if part and (len(part) >= most or size + length > PART_BYTES):
-            parts.append(part)
+            yield part
             part, size = [], 0
         part.append(path)
         size += length
     if part:
-        parts.append(part)
-    return parts
+        yield part
+
+
+def _read_files(paths: list[str]) -> tuple[np.ndarray, np.ndarray]:
+    """The bytes of the files one after another, read straight into one array, and where each
+    starts (and the last ends)."""
+    descriptors: list[int] = []
+    try:
+        for path in paths:
+            try:
+                descriptors.append(os.open(path, os.O_RDONLY))
+            except OSError as exc:
+                raise InputError(path, exc.strerror or str(exc)) from None
+        sizes = [os.fstat(fd).st_size for fd in descriptors]
+        starts = np.zeros(len(paths) + 1, np.int64)
+        np.cumsum(sizes, out=starts[1:])
+        buf = np.empty(int(starts[-1]), np.uint8)
+        view = memoryview(buf)
+        ends = starts[1:].copy()
+        for k, (path, fd) in enumerate(zip(paths, descriptors, strict=True)):
+            at, end = int(starts[k]), int(starts[k + 1])
+            while at < end:
+                try:
+                    got = os.readv(fd, [view[at:end]])
+                except OSError as exc:  # a folder given as a file, say
+                    raise InputError(path, exc.strerror or str(exc)) from None
+                if got == 0:  # shorter than when it was measured
+                    break
+                at += got
+            ends[k] = at
+    finally:
+        for fd in descriptors:
+            os.close(fd)
+    if np.any(ends != starts[1:]):  # a file shrank as it was read: keep what it held
+        keep = np.concatenate([np.arange(a, e) for a, e in zip(starts[:-1], ends, strict=True)])
+        buf = buf[keep.astype(np.int64)]
+        starts[1:] = np.cumsum(ends - starts[:-1])
+    return buf, starts
 
 
 def _read_part(paths: list[str], triple_edges: tuple[str, str]) -> _Part:
     """The grains of consecutive files (a malformed file is one bad grain, not a failed run)."""
-    contents: list[bytes] = []
+    buf, starts = _read_files(paths)
     refused: dict[int, str] = {}
-    for k, path in enumerate(paths):
-        try:
-            with open(path, "rb") as handle:
-                raw = handle.read()
-        except OSError as exc:
-            raise InputError(path, exc.strerror or str(exc)) from None
-        why = not_grains(raw[:SNIFF_BYTES], file_only=True)
+    for k in range(len(paths)):
+        head = buf[starts[k] : min(starts[k + 1], starts[k] + SNIFF_BYTES)].tobytes()
+        why = not_grains(head, file_only=True)
         if why:  # UTF-16, compressed, Parquet: said so, not read as a file of no bodies
             refused[k] = why
-            raw = b""
-        contents.append(raw)
-    starts = np.zeros(len(paths) + 1, np.int64)
-    np.cumsum([len(raw) for raw in contents], out=starts[1:])
-    buf = np.frombuffer(b"".join(contents), np.uint8)
     marker_words = [w.lower().encode() for w in " ".join(triple_edges).split()]
     marker = np.frombuffer(b"".join(marker_words), np.uint8)
     marker_ends = np.cumsum([len(w) for w in marker_words]).astype(np.int64)
