@@ -820,17 +820,29 @@ def _reserve(a, need):
 
 
 @njit(no_cpython_wrapper=True)
-def _rows_of(kind, f0, f1, k):
-    """The entries of kind ``k`` among ``f0:f1``, in order."""
-    count = 0
+def _rows_by_kind(kind, f0, f1):
+    """The entries of each kind among ``f0:f1``, in order: vertices, edges, facets, bodies."""
+    counts = np.zeros(4, np.int64)
     for i in range(f0, f1):
-        count += kind[i] == k
-    rows = np.empty(count, np.int64)
-    count = 0
+        counts[kind[i]] += 1
+    rows = (
+        np.empty(counts[VERTEX], np.int64),
+        np.empty(counts[EDGE], np.int64),
+        np.empty(counts[FACET], np.int64),
+        np.empty(counts[BODY], np.int64),
+    )
+    fill = np.zeros(4, np.int64)
     for i in range(f0, f1):
-        if kind[i] == k:
-            rows[count] = i
-            count += 1
+        k = kind[i]
+        if k == VERTEX:
+            rows[0][fill[0]] = i
+        elif k == EDGE:
+            rows[1][fill[1]] = i
+        elif k == FACET:
+            rows[2][fill[2]] = i
+        else:
+            rows[3][fill[3]] = i
+        fill[k] += 1
     return rows
 
 
@@ -848,10 +860,7 @@ def _file_tables(f0, f1, kind, ident, line_of, status, first, last, wraps, flag,
     uses: wraps that do not add up); uses of each edge by facets; bodies in the order of their
     first line: last entry, any unreadable line.
     """
-    v_rows = _rows_of(kind, f0, f1, VERTEX)
-    e_rows = _rows_of(kind, f0, f1, EDGE)
-    f_rows = _rows_of(kind, f0, f1, FACET)
-    b_rows = _rows_of(kind, f0, f1, BODY)
+    v_rows, e_rows, f_rows, b_rows = _rows_by_kind(kind, f0, f1)
     # Vertices (room for the ids that edges name and no line defines), edges.
     v_map, v_slot = _slots(ident[v_rows], 2 * e_rows.shape[0])
     nv = v_map[2][0]
@@ -1225,6 +1234,14 @@ def _body(
     d_dir = np.empty(n_darts, np.int64)
     d_key = np.empty(n_darts, np.int64)
     d_L = np.empty((n_darts, 3), np.int64)
+    # The body's edges in the order it first uses them, and their uses; the second use of an
+    # edge is the first's partner (undone below where an edge has more).
+    n_local = 0
+    el_slot = np.empty(n_darts, np.int64)
+    el_count = np.zeros(n_darts, np.int64)
+    el_first = np.empty(n_darts, np.int64)
+    partner = np.full(n_darts, -1, np.int64)
+    ambiguous = False
     for o in range(m):
         s = occ_slot[o]
         a = pos_start[s]
@@ -1233,59 +1250,51 @@ def _body(
             d = occ_d[o] + i
             k = i if occ_sign[o] > 0 else size - 1 - i
             t = k if occ_sign[o] > 0 else (k + 1) % size
-            d_occ[d], d_pos[d], d_edge[d] = o, a + k, p_edge[a + k]
+            es = p_edge[a + k]
+            d_occ[d], d_pos[d], d_edge[d] = o, a + k, es
             d_dir[d] = occ_sign[o] * p_sign[a + k]
             d_key[d] = p_tail[a + t]
             d_L[d, 0], d_L[d, 1], d_L[d, 2] = p_L[a + t, 0], p_L[a + t, 1], p_L[a + t, 2]
-    # The body's edges in the order it first uses them, and their uses.
-    n_local = 0
-    el_slot = np.empty(n_darts, np.int64)
-    el_count = np.zeros(n_darts, np.int64)
-    d_local = np.empty(n_darts, np.int64)
-    for d in range(n_darts):
-        es = d_edge[d]
-        if es_stamp[es] != stamp:
-            es_stamp[es], es_local[es] = stamp, n_local
-            el_slot[n_local] = es
-            n_local += 1
-        d_local[d] = es_local[es]
-        el_count[es_local[es]] += 1
+            if es_stamp[es] != stamp:
+                es_stamp[es], es_local[es] = stamp, n_local
+                el_slot[n_local], el_first[n_local] = es, d
+                n_local += 1
+            local = es_local[es]
+            el_count[local] += 1
+            if el_count[local] == 2:
+                partner[d], partner[el_first[local]] = el_first[local], d
+            elif el_count[local] == 3:
+                ambiguous = True
     for local in range(n_local):
         c = el_count[local]
         if c != 2 and (not periodic or c % 2 == 1):
             params[0], params[1] = e_id[el_slot[local]], c
             return GRAIN_NOT_CLOSED
-    el_slot, el_count = el_slot[:n_local], el_count[:n_local]
-    el_start = np.zeros(n_local + 1, np.int64)
     for local in range(n_local):
-        el_start[local + 1] = el_start[local] + el_count[local]
-    el_darts = np.empty(n_darts, np.int64)
-    fill = el_start[:-1].copy()
-    for d in range(n_darts):
-        el_darts[fill[d_local[d]]] = d
-        fill[d_local[d]] += 1
-    # Partners: the other use of an edge used twice; around edges used more often, geometry.
-    partner = np.full(n_darts, -1, np.int64)
-    ambiguous = False
-    for local in range(n_local):
-        if el_count[local] == 2:
-            d1, d2 = el_darts[el_start[local]], el_darts[el_start[local] + 1]
-            if d_dir[d1] == d_dir[d2]:
-                params[0], params[1] = f_id[occ_slot[d_occ[d1]]], f_id[occ_slot[d_occ[d2]]]
-                params[2] = e_id[el_slot[local]]
-                return GRAIN_ORIENTATION
-            partner[d1], partner[d2] = d2, d1
-        else:
-            ambiguous = True
+        d1 = el_first[local]
+        if el_count[local] == 2 and d_dir[d1] == d_dir[partner[d1]]:
+            params[0], params[1] = f_id[occ_slot[d_occ[d1]]], f_id[occ_slot[d_occ[partner[d1]]]]
+            params[2] = e_id[el_slot[local]]
+            return GRAIN_ORIENTATION
     if ambiguous:
+        el_slot, el_count = el_slot[:n_local], el_count[:n_local]
+        el_start = np.zeros(n_local + 1, np.int64)
+        for local in range(n_local):
+            el_start[local + 1] = el_start[local] + el_count[local]
+        el_darts = np.empty(n_darts, np.int64)
+        fill = el_start[:-1].copy()
+        for d in range(n_darts):
+            local = es_local[d_edge[d]]
+            el_darts[fill[local]] = d
+            fill[local] += 1
         darts = (d_occ, d_pos, d_dir, occ_d, occ_sign)
-        local = (el_slot, el_count, el_start, el_darts)
+        edge_uses = (el_slot, el_count, el_start, el_darts)
         ok, failed, key = False, -1, -1
         for attempt in range(2):  # outward lists, then inward ones
             if attempt == 0 or key < 0:
                 rule = 1 - 2 * attempt
                 ok, failed, key = _pair_around(
-                    rule, stamp, darts, partner, local, tables, stamps, xyz, periods
+                    rule, stamp, darts, partner, edge_uses, tables, stamps, xyz, periods
                 )
             if ok:
                 break
@@ -1332,7 +1341,7 @@ def _body(
     lv_key = np.empty(n_darts, np.int64)
     lv_off = np.empty((n_darts, 3), np.int64)
     lv_next = np.empty(n_darts, np.int64)
-    d_tail = np.empty(n_darts, np.int64)
+    d_tail = corners  # the corners of each patch in order: the tails of its darts
     off = np.empty(3, np.int64)
     for d in range(n_darts):
         o, key = d_occ[d], d_key[d]
@@ -1509,8 +1518,6 @@ def _body(
                 boundary = 1
     for o in range(m):
         sizes[o] = occ_d[o + 1] - occ_d[o]
-    for d in range(n_darts):
-        corners[d] = d_tail[d]
     counts[0], counts[1], counts[2], counts[3] = n_faces, n_nbrs, n_lv, n_darts
     counts[4], counts[5] = m, boundary
     return GRAIN_OK
