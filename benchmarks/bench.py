@@ -648,8 +648,9 @@ def main() -> None:
         "--evolver-files",
         type=int,
         nargs="+",
-        default=[1_000, 10_000],
-        help="folder sizes of (j), in grain files of about 24 kB (default 1000 10000)",
+        default=[1_000, 50_000],
+        help="folder sizes of (j), in grain files of about 22 kB (default 1000 50000: start-up "
+        "and steady state)",
     )
     parser.add_argument("--evolver-only", action="store_true", help="only (j), Evolver files")
     parser.add_argument(
