@@ -163,10 +163,10 @@ def _lex_line(buf, p, end, last_close, tok_s, tok_e, line):
     """The tokens of the logical line at ``p`` into ``tok_s``/``tok_e``: ``(p after it, tokens,
     its first line number, at end of file)``; ``line[0]`` counts physical lines.
 
-    Comments go as the text reader before these kernels removed them: ``/* ... */`` (one that
-    closes: it ends before ``last_close``), its line breaks kept; ``//`` to the end of the
-    line; a line that starts with ``#`` (a directive). A backslash ending a line joins the next
-    one to it.
+    Comments are left out: ``/* ... */`` (one that closes: its ``*/`` is at ``last_close`` or
+    before), whose line breaks still end lines; ``//`` to the end of the line; a line that
+    starts with ``#`` (a directive). A comment separates tokens. A backslash ending a line joins
+    the next one to it.
     """
     ntok = 0
     first = line[0]
@@ -203,7 +203,7 @@ def _lex_line(buf, p, end, last_close, tok_s, tok_e, line):
                 else:
                     q += 1
             p = q + 2
-            if breaks:  # the comment's line breaks end the line, as they did
+            if breaks:  # the comment's line breaks end the line
                 line[0] += breaks
                 return p, ntok, first, False
         else:  # a backslash that joins the next line to this one
