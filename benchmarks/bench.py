@@ -8,7 +8,8 @@ resident memory of every run; (e) the first run after installation (numba compil
 warm run, and ``grainclass --help``; (f) the Voronoi generator; (g) ``grainclass census``
 against plantri alone on the same parts; (h) ``grainclass perturb`` against ``grainclass
 classify`` on the same grains, as planar_code and as adjacency text; (i) one giant grain, the
-k-gonal prism for k = 1,000, 4,000 and 20,000, with and without types.
+k-gonal prism for k = 1,000, 4,000 and 20,000, with and without types; (j) a folder of Surface
+Evolver grain files end to end, against ``cat`` of the same files.
 Benchmarks report; they assert nothing (the tests do that).
 """
 
@@ -548,6 +549,85 @@ def bench_prisms(ks: list[int], work: Path) -> None:
         path.unlink()
 
 
+GRAIN_FILES = ROOT / "tests" / "data" / "evolver" / "grain3d"
+
+
+def grain_folder(folder: Path, n_files: int, variants: int = 100) -> int:
+    """``n_files`` grain files of a grain-growth time step in ``folder`` (``21000-ID.fe``): the
+    ten real ones of tests/data/evolver/grain3d, ``variants`` times over with their vertices
+    moved by up to 2e-6 (the simulator's 6 significant digits kept), then copied round-robin.
+    Returns their bytes."""
+    rng = np.random.default_rng(0)
+    sources = [path.read_text() for path in sorted(GRAIN_FILES.glob("*.fe"))]
+    texts = []
+    for k in range(min(variants, n_files)):
+        head, rest = sources[k % len(sources)].split("\nedges\n", 1)
+        lines = head.split("\n")
+        start = lines.index("vertices") + 1
+        for i in range(start, len(lines)):
+            fields = lines[i].split("\t")
+            if len(fields) < 4:
+                continue
+            moved = np.array(fields[1:4], float) + rng.uniform(-2e-6, 2e-6, 3)
+            fields[1:4] = [f"{x:.6g}" for x in moved]
+            lines[i] = "\t".join(fields)
+        texts.append(("\n".join(lines) + "\nedges\n" + rest).encode())
+    folder.mkdir(parents=True, exist_ok=True)
+    total = 0
+    for i in range(n_files):
+        data = texts[i % len(texts)]
+        (folder / f"21000-{i:08d}.fe").write_bytes(data)
+        total += len(data)
+    return total
+
+
+def bench_evolver(sizes: list[int], rounds: int, work: Path, compare: list[str]) -> None:
+    """``grainclass classify FOLDER`` against ``cat FOLDER/*.fe > /dev/null``, the same files
+    read from the page cache; ``compare``: other grainclass source trees (a checkout of main,
+    say) timed in the same rounds."""
+    gc = " ".join(GRAINCLASS)
+    out = work / "grains.parquet"
+    trees = [("this tree", None), *((src, src) for src in compare)]
+    print(
+        f"(j) Surface Evolver grain files, end to end on {available_cpus()} cores: wall s and MB/s "
+        f"(median of {rounds} rounds), against cat of the same files; CPU s of all processes"
+    )
+    warm = work / "grains-warm"
+    grain_folder(warm, 20)
+    for _, src in trees:  # compile whatever the runs use before timing them
+        env = None if src is None else dict(os.environ, PYTHONPATH=src)
+        subprocess.run(f"{gc} classify {warm} -o {out} -q", shell=True, check=True, env=env)
+    for n in sizes:
+        folder = work / f"grains-{n}"
+        size = grain_folder(folder, n) / 1e6
+        # Past ARG_MAX, *.fe cannot be expanded: xargs hands cat the names in parts.
+        files = f"{folder}/*.fe" if n <= 20_000 else None
+        floor = (
+            f"cat {files} > /dev/null"
+            if files
+            else f"find {folder} -name '*.fe' -print0 | xargs -0 cat > /dev/null"
+        )
+        cats, runs = [], {name: [] for name, _ in trees}
+        for _ in range(rounds):
+            cats.append(timed(floor))
+            for name, src in trees:
+                env = None if src is None else dict(os.environ, PYTHONPATH=src)
+                runs[name].append(timed(f"{gc} classify {folder} -o {out} -q", env))
+            out.unlink(missing_ok=True)
+        cat_s = float(np.median([t.seconds for t in cats]))
+        print(f"    {n:,} files, {size:.0f} MB: cat {cat_s:.2f} s ({size / cat_s:,.0f} MB/s)")
+        for name, timings in runs.items():
+            wall = float(np.median([t.seconds for t in timings]))
+            cpu = float(np.median([t.user + t.system for t in timings]))
+            spread = f"{min(t.seconds for t in timings):.2f}-{max(t.seconds for t in timings):.2f}"
+            peak = max(t.peak_mb for t in timings)
+            print(
+                f"        classify ({name}): {wall:6.2f} s ({spread}), {size / wall:6.1f} MB/s, "
+                f"x{wall / cat_s:.1f} cat; cpu {cpu:.2f} s, {peak:.0f} MB"
+            )
+        shutil.rmtree(folder)
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--sizes", type=int, nargs="+", default=[14, 15, 16])
@@ -564,19 +644,37 @@ def main() -> None:
     parser.add_argument("--prisms", type=int, nargs="+", default=[1000, 4000, 20000])
     parser.add_argument("--prisms-only", action="store_true", help="only (i), the prisms")
     parser.add_argument("--voronoi-only", action="store_true", help="only (f), Voronoi cells")
+    parser.add_argument(
+        "--evolver-files",
+        type=int,
+        nargs="+",
+        default=[1_000, 50_000],
+        help="folder sizes of (j), in grain files of about 22 kB (default 1000 50000: start-up "
+        "and steady state)",
+    )
+    parser.add_argument("--evolver-only", action="store_true", help="only (j), Evolver files")
+    parser.add_argument(
+        "--compare-src",
+        nargs="+",
+        default=[],
+        metavar="DIR",
+        help="other grainclass source trees (src/ of a checkout) timed beside this one in (j)",
+    )
     args = parser.parse_args()
     if args.rounds < 1:
         parser.error("--rounds must be at least 1")
     print(f"grainclass benchmarks on {available_cpus()} cores, {time.strftime('%Y-%m-%d %H:%M')}")
     with tempfile.TemporaryDirectory() as tmp:
         work = Path(tmp)
-        if args.perturb_only or args.prisms_only or args.voronoi_only:
+        if args.perturb_only or args.prisms_only or args.voronoi_only or args.evolver_only:
             if args.voronoi_only:
                 bench_voronoi(work)
             if args.perturb_only:
                 bench_perturb(work, args.rounds)
             if args.prisms_only:
                 bench_prisms(args.prisms, work)
+            if args.evolver_only:
+                bench_evolver(args.evolver_files, args.rounds, work, args.compare_src)
             return
         if not args.census_only:
             bench_startup(work)
@@ -588,6 +686,7 @@ def main() -> None:
         if not args.census_only:
             bench_perturb(work, args.rounds)
             bench_prisms(args.prisms, work)
+            bench_evolver(args.evolver_files, args.rounds, work, args.compare_src)
 
 
 if __name__ == "__main__":

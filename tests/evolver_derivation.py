@@ -28,7 +28,19 @@ building the dual) and the geometry are done here.
   truncations to undo; and a second reduction on the dual's graph alone (networkx, its own
   order, empty triangles counted as the graph's 3-cycles less its 2n - 4 faces) reaches the
   same fundamental size and truncation count, and finds an empty triangle exactly when the
-  family is sc.
+  family is sc. The symmetry is the number of Weinberg walks that reach the smallest code, by
+  brute force (``reference.weinberg``).
+* A body that lists a facet twice, once each way (a periodic cell that meets its own image
+  across it), is first made a file of its own (``unwrap_cell``): each entry of its list is a
+  patch, its facet's corners unwrapped along the facet's edges, moved by the lattice
+  translation (whole periods, -2 to 2 of each) that puts its middle nearest the cell's centre
+  with the centre on its inner side: the faces of a Voronoi cell of a lattice, each halfway to
+  a neighbour, as the hand-made cells are. The centre starts behind the first patch, by
+  half the edge of a cube of the cell's share of the box, and is the mean of the placed
+  corners after each round, until the placement stays. Corners are told apart by position,
+  edges by their two corners; each patch is a facet, and the body lists them all. Everything
+  below then checks the result: a wrong placement leaves edges on one patch or a surface
+  that is not a sphere.
 * Geometry: vertex positions unwrapped per body by breadth-first search over its edges (an
   edge's head sits at its tail plus the stored difference, shifted by wrap * period); every
   edge of the body then agrees with its wrap marks and is shorter than half the shortest period.
@@ -335,7 +347,100 @@ def derive_body(data: Datafile, body: int) -> dict:
         found
         | {"status": "ok", "p_vector": p_vector}
         | {key: result[key] for key in ("class", "truncations", "fundamental_faces", "trees")}
+        | {"symmetry": reference.weinberg(lists)[1]}
     )
+
+
+def _patch(data: Datafile, signed_facet: int) -> list[tuple[np.ndarray, int]]:
+    """A patch: the corners of a facet in its own frame (each edge's head where its tail and
+    wrap marks put it), with the edge that leaves each, in the direction of the body's sign."""
+    periods = data.periods if data.periods is not None else np.zeros((3, 3))
+    corners, point = [], None
+    for signed_edge in data.facets[abs(signed_facet)]:
+        edge = abs(signed_edge)
+        tail, head = data.edges[edge]
+        step = data.vertices[head] + data.wraps[edge] @ periods - data.vertices[tail]
+        if signed_edge < 0:
+            tail, step = head, -step
+        if point is None:
+            point = data.vertices[tail]
+        corners.append((point, edge))
+        point = point + step
+    _check(np.allclose(point, corners[0][0]), f"facet {abs(signed_facet)} does not close up")
+    if signed_facet < 0:  # the same corners the other way round, each with the edge before it
+        corners = [(p, corners[k - 1][1]) for k, (p, _) in enumerate(corners)][::-1]
+    return corners
+
+
+def unwrap_cell(data: Datafile, body: int) -> Datafile:
+    """Body ``body`` of a periodic file, placed patch by patch around its centre (the module's
+    docstring), as a file of one body (1) whose facets are its patches."""
+    patches = [_patch(data, f) for f in data.bodies[body]]
+    periods = data.periods
+    scale = float(max(np.linalg.norm(periods, axis=1)))
+    shifts = np.array(list(itertools.product(range(-2, 3), repeat=3))) @ periods
+    middles = [np.mean([p for p, _ in patch], axis=0) for patch in patches]
+    normals = []
+    for patch in patches:
+        points = [p for p, _ in patch]
+        newell = sum(np.cross(a, b) for a, b in zip(points, points[1:] + points[:1], strict=True))
+        normals.append(newell / np.linalg.norm(newell))
+    share = abs(np.linalg.det(periods)) / len(data.bodies)
+    centre = middles[0] - normals[0] * share ** (1 / 3) / 2
+    placed = None
+    for _ in range(20):
+        chosen = []
+        for middle, normal in zip(middles, normals, strict=True):
+            heights = (middle + shifts - centre) @ normal
+            distances = np.linalg.norm(middle + shifts - centre, axis=1)
+            outward = np.flatnonzero(heights > 1e-9 * scale)
+            _check(len(outward) > 0, "a patch with no place on the outward side of the centre")
+            chosen.append(int(outward[np.argmin(distances[outward])]))
+        if chosen == placed:
+            break
+        placed = chosen
+        centre = np.mean(
+            [p + shifts[k] for patch, k in zip(patches, placed, strict=True) for p, _ in patch],
+            axis=0,
+        )
+    else:
+        raise DerivationError(f"body {body}: the placement of its patches does not settle")
+    cell = Datafile()
+    corner_ids: dict[tuple, int] = {}
+    edge_ids: dict[tuple[int, int], int] = {}
+    for number, (patch, k) in enumerate(zip(patches, placed, strict=True), 1):
+        ids = []
+        for point, _ in patch:
+            key = tuple(np.round((point + shifts[k]) / scale, 9))
+            if key not in corner_ids:
+                corner_ids[key] = len(corner_ids) + 1
+                cell.vertices[corner_ids[key]] = point + shifts[k]
+            ids.append(corner_ids[key])
+        loop = []
+        for j, (_, edge) in enumerate(patch):
+            a, b = ids[j], ids[(j + 1) % len(ids)]
+            if (b, a) in edge_ids:
+                loop.append(-edge_ids[(b, a)])
+                continue
+            _check((a, b) not in edge_ids, f"body {body}: two patches run along an edge one way")
+            edge_ids[(a, b)] = len(edge_ids) + 1
+            cell.edges[edge_ids[(a, b)]] = (a, b)
+            cell.wraps[edge_ids[(a, b)]] = np.zeros(3, int)
+            if edge in data.red:
+                cell.red.add(edge_ids[(a, b)])
+            loop.append(edge_ids[(a, b)])
+        cell.facets[number] = loop
+    cell.bodies[1] = list(cell.facets)
+    return cell
+
+
+def _cell(data: Datafile, body: int) -> tuple[Datafile, int]:
+    """What derive_body takes for body ``body``: the file itself, or, for a body that lists a
+    facet twice, its cell unwrapped (:func:`unwrap_cell`)."""
+    facets = [abs(f) for f in data.bodies[body]]
+    if data.periods is not None and len(set(facets)) < len(facets):
+        return unwrap_cell(data, body), 1
+    return data, body
 
 
 def grain_file_values(path: Path) -> dict:
@@ -369,9 +474,9 @@ def grain_file_values(path: Path) -> dict:
 def foam_file_values(path: Path) -> dict:
     """A hand-made file's entry of ``FOAMS``: every body if all are ok, else its one body's."""
     data = read_datafile(path)
-    grains = {body: derive_body(data, body) for body in data.bodies}
+    grains = {body: derive_body(*_cell(data, body)) for body in data.bodies}
     if all(g["status"] == "ok" for g in grains.values()):
-        keys = ("n_faces", "p_vector", "class", "truncations", "volume", "area")
+        keys = ("n_faces", "p_vector", "class", "truncations", "symmetry", "volume", "area")
         bodies = {body: {key: g[key] for key in keys} for body, g in grains.items()}
         return {"status": "ok", "bodies": bodies}
     _check(len(grains) == 1, f"{path}: bodies not all ok; FOAMS has no entry of that kind")
@@ -387,7 +492,7 @@ def main(paths: list[str]) -> None:
     for path in paths:
         data = read_datafile(Path(path))
         for body in data.bodies:
-            grain = derive_body(data, body)
+            grain = derive_body(*_cell(data, body))
             print(f"{Path(path).name} body {body}:")
             for key, value in grain.items():
                 print(f"    {key}: {value}")

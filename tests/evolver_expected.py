@@ -16,7 +16,8 @@ normals): the derivation keeps the sign, and nothing is flipped.
 Keys: ``n_faces``; ``p_vector`` (counts of faces with 3, 4, 5, ... sides, up to the largest; None
 for degenerate grains); ``status`` ("ok" / "degenerate"); ``class`` and ``truncations`` (None for
 degenerate grains); ``n_two_gons`` (degenerate grains only); ``volume``; ``area``; and the extra
-cross-check counts ``n_corners`` and ``n_triple_lines``.
+cross-check counts ``n_corners`` and ``n_triple_lines``. The bodies of ``FOAMS`` have
+``symmetry`` too (the order of the grain's symmetry group, as grainclass's ``symmetry``).
 """
 
 FIXTURES = {
@@ -176,12 +177,29 @@ FIXTURES = {
     },
 }
 
+# The truncated octahedron of edge sqrt(2) (the BCC Voronoi cell of cube side 4): 24 corners of
+# 3 faces, 36 edges, 14 faces: 24 - 36 + 14 = 2; p = (0, 6, 0, 8); the dual (tetrakis
+# hexahedron) has no degree-3 vertex and no empty triangle: flag. Volume 4**3 / 2 = 32, area
+# 6 * 2 + 8 * (3 * sqrt(3)) = 12 + 24 sqrt(3) = 53.569219381653056. Symmetry 48: the full
+# octahedral group (24 rotations, each with its mirror image).
+KELVIN = {
+    "n_faces": 14,
+    "p_vector": (0, 6, 0, 8),
+    "class": "flag",
+    "truncations": 0,
+    "symmetry": 48,
+    "volume": 32.0,
+    "area": 53.5692194,
+}
+
 # Hand-made files in tests/data/evolver/, generated from explicit geometry by a throwaway script and
 # checked by the same derivation as above (foam_file_values in tests/evolver_derivation.py:
-# closure, volume by the divergence theorem, area, corners, Euler characteristic, classification).
-# In these files every polygon facet is one grain face: each lies between two different bodies
-# (two_cubes' shared square, every Kelvin facet) or on the outside, where no two facets of a body
-# are coplanar.
+# closure, volume by the divergence theorem, area, corners, Euler characteristic, classification;
+# a cell that meets its own periodic image unwrapped first, by unwrap_cell). In these files every
+# polygon facet is one grain face: each lies between two bodies (two_cubes' shared square, every
+# Kelvin facet; in a small periodic box the two may be one body and its image) or on the
+# outside, where no two facets of a body are coplanar; kelvin_one_cell_fans.fe marks its
+# faces' edges color red instead.
 FOAMS = {
     # Two unit cubes sharing the facet x = 1 (facet 2: +2 in body 1, -2 in body 2). Non-torus file,
     # so no wrap marks on edges. 12 vertices, 20 edges, 11 quadrilateral facets. Per cube: 6
@@ -195,6 +213,7 @@ FOAMS = {
                 "p_vector": (0, 6),
                 "class": "flag",
                 "truncations": 0,
+                "symmetry": 48,
                 "volume": 1.0,
                 "area": 6.0,
             },
@@ -203,6 +222,7 @@ FOAMS = {
                 "p_vector": (0, 6),
                 "class": "flag",
                 "truncations": 0,
+                "symmetry": 48,
                 "volume": 1.0,
                 "area": 6.0,
             },
@@ -214,19 +234,55 @@ FOAMS = {
     # touches its own periodic image, so every facet lies between two different bodies and every
     # body has 24 corners of 3 faces, 36 edges, 14 faces: 24 - 36 + 14 = 2; p = (0, 6, 0, 8);
     # the dual (tetrakis hexahedron) has no degree-3 vertex and no empty triangle: flag.
-    # Volume 32 = 8**3 / 16, area 12 + 24*sqrt(3) = 53.569219381653056.
+    # Volume 32 = 8**3 / 16: the cell KELVIN above.
     "kelvin_foam.fe": {
         "status": "ok",
+        "bodies": {body: KELVIN for body in range(1, 17)},
+    },
+    # Kelvin's foam in the smallest periodic box of its BCC lattice's cube: periods = cube of
+    # side 4, the Voronoi cells of (1, 1, 1) and (3, 3, 3). 12 vertices, 24 edges, 14 facets
+    # (8 hexagons, each between the two bodies, and 3 squares per body, each between the body
+    # and its own image: the body lists it once each way). Each cell, unwrapped: 14 patches,
+    # 24 corners, 36 edges, the same truncated octahedron as above, so the same row; the two
+    # volumes, 32 each, fill the box (4**3 = 64).
+    "kelvin_bcc_torus.fe": {
+        "status": "ok",
+        "bodies": {1: KELVIN, 2: KELVIN},
+    },
+    # One truncated octahedron filling a torus whose periods are the primitive vectors of the
+    # same lattice, (-2, 2, 2), (2, -2, 2), (2, 2, -2) (volume |det| = 32): 6 vertices, 12
+    # edges, 7 facets (4 hexagons, 3 squares), each listed once each way; every edge is a
+    # triple line where three faces of the one cell meet, so the body uses it 6 times, at
+    # three places. Unwrapped: the Kelvin cell above, volume 32 = the box.
+    "kelvin_one_cell.fe": {
+        "status": "ok",
+        "bodies": {1: KELVIN},
+    },
+    # The cell of kelvin_one_cell.fe with each face cut into triangles around its centre
+    # (13 vertices: 6 corners and 7 face centres; 48 edges: the 12 triple-line edges, marked
+    # color red, and 36 spokes; 36 triangles, each listed once each way). The triangles of a
+    # face join across its spokes into the 14 faces above: the same row.
+    "kelvin_one_cell_fans.fe": {
+        "status": "ok",
+        "bodies": {1: KELVIN},
+    },
+    # A cube of side 2 filling the cubic torus of side 2: one vertex, three edges (one along
+    # each axis, wrapping once), three facets (one per coordinate plane, each running along
+    # two of the edges twice, once each way) listed once each way. Unwrapped: 6 squares, 8
+    # corners, 12 edges, 8 - 12 + 6 = 2; the dual is the octahedron: flag, symmetry 48.
+    # Volume 8 = the box, area 24.
+    "cube_one_cell.fe": {
+        "status": "ok",
         "bodies": {
-            body: {
-                "n_faces": 14,
-                "p_vector": (0, 6, 0, 8),
+            1: {
+                "n_faces": 6,
+                "p_vector": (0, 6),
                 "class": "flag",
                 "truncations": 0,
-                "volume": 32.0,
-                "area": 53.5692194,
-            }
-            for body in range(1, 17)
+                "symmetry": 48,
+                "volume": 8.0,
+                "area": 24.0,
+            },
         },
     },
     # Unit cube without its top facet (z = 1): 5 quadrilateral facets, outward signs. Edges 1, 7,

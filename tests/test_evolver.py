@@ -78,6 +78,7 @@ def test_whole_foam_file_makes_every_body_a_grain(name):
         assert row["status"] == "ok"
         got = (row["n_faces"], tuple(row["p_vector"]), row["class"], row["truncations"])
         assert got == (want["n_faces"], want["p_vector"], want["class"], want["truncations"])
+        assert row["symmetry"] == want["symmetry"]
         assert row["volume"] == pytest.approx(want["volume"], rel=1e-9)
         assert row["area"] == pytest.approx(want["area"], rel=1e-8)
         assert row["isoperimetric"] == pytest.approx(
@@ -230,21 +231,21 @@ def test_cli_classifies_a_folder(tmp_path):
     assert "10 grains classified (8 ok, 2 degenerate)" in result.stderr
 
 
-def test_process_pool_reads_the_same_grains_in_the_same_order(fixture_rows, monkeypatch):
-    monkeypatch.setattr("grainclass.readers.evolver.PARALLEL_FILES", 2)
-    rows = _rows(FIXTURE_DIR)
-    assert [r["grain_id"] for r in rows] == sorted(r[:-3] for r in FIXTURES)
-    assert {r["grain_id"] + ".fe": r for r in rows} == fixture_rows
-
-
-def test_a_folder_is_read_in_this_process_when_no_worker_can_start(
-    fixture_rows, monkeypatch, no_interpreter
+@pytest.mark.parametrize("jobs", [1, 2])
+def test_groups_of_files_read_on_threads_give_the_same_grains_in_order(
+    fixture_rows, monkeypatch, jobs
 ):
-    from grainclass.errors import NoWorkersWarning
+    """Two files to a kernel call: five groups, read on one thread or two, in order."""
+    from grainclass.parallel import get_jobs, set_jobs
 
-    monkeypatch.setattr("grainclass.readers.evolver.PARALLEL_FILES", 2)
-    with pytest.warns(NoWorkersWarning):
+    monkeypatch.setattr("grainclass.readers.evolver.PART_FILES", 2)
+    before = get_jobs()
+    set_jobs(jobs)
+    try:
         rows = _rows(FIXTURE_DIR)
+    finally:
+        set_jobs(before)
+    assert [r["grain_id"] for r in rows] == sorted(r[:-3] for r in FIXTURES)
     assert {r["grain_id"] + ".fe": r for r in rows} == fixture_rows
 
 
@@ -285,17 +286,21 @@ def test_one_bad_line_of_a_whole_foam_fails_only_the_bodies_that_need_it(
 
 
 def test_ctrl_c_at_a_terminal_stops_the_readers_quietly(tmp_path):
-    """A terminal's Ctrl-C goes to every process of its group, the pool's workers too (200
-    files or more): they end quietly, and the parent exits 130 without a traceback."""
-    from grainclass.readers.evolver import PARALLEL_FILES
-
+    """Ctrl-C while the reader's threads are at work (the first batches written, many files
+    still to read): the run exits 130 without a traceback, and leaves no output behind."""
     folder = tmp_path / "dump"
     folder.mkdir()
     source = next(FIXTURE_DIR.glob("*.fe")).read_bytes()
-    for k in range(4 * PARALLEL_FILES):
+    for k in range(3000):
         (folder / f"{k:04d}.fe").write_bytes(source)
     out = tmp_path / "out.parquet"
-    code, err = ctrl_c_at_a_terminal("classify", str(folder), "-o", str(out), "-q")
+
+    def writing(pid: int) -> bool:
+        return any(p.name != "dump" for p in tmp_path.iterdir())
+
+    code, err = ctrl_c_at_a_terminal(
+        "classify", str(folder), "-o", str(out), "-q", "--chunk-size", "64", when=writing
+    )
     assert code == 130
     assert "Traceback" not in err
     assert [p.name for p in tmp_path.iterdir()] == ["dump"]

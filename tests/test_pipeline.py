@@ -107,17 +107,19 @@ def test_available_cpus_without_an_affinity_mask_are_the_machines(monkeypatch):
     assert available_cpus() == 1
 
 
-def test_evolver_files_are_read_in_this_process_when_one_cpu_is_allowed(monkeypatch):
+def test_evolver_files_are_read_in_this_thread_when_one_job_is_allowed(monkeypatch):
+    """Groups of two files, one job: no pool of threads (nor of processes) is made."""
     from pathlib import Path
 
+    from grainclass import parallel
     from grainclass.readers import evolver
 
-    def no_pool(workers: int) -> None:
-        pytest.fail(f"a pool of {workers} workers where one CPU is allowed")
+    def no_pool(name: str) -> None:
+        pytest.fail(f"a pool of threads ({name}) where one job is allowed")
 
-    monkeypatch.setattr(os, "sched_getaffinity", lambda pid: {1}, raising=False)
-    monkeypatch.setattr(evolver, "PARALLEL_FILES", 2)
-    monkeypatch.setattr(evolver, "worker_pool", no_pool)
+    monkeypatch.setattr(parallel, "_jobs", 1)
+    monkeypatch.setattr(parallel, "_pool", no_pool)
+    monkeypatch.setattr(evolver, "PART_FILES", 2)
     paths = sorted(str(p) for p in (Path(__file__).parent / "data" / "evolver").glob("*.fe"))
     assert len(paths) >= 2
     assert sum(len(batch) for batch in evolver.read_evolver(paths, 100)) >= len(paths)

@@ -6,8 +6,8 @@ the ranges at once. A stream of batches (the command line) runs whole batches at
 each on one thread, with results handed out in input order: no thread waits for another at
 every batch, which matters when a producer (plantri in a pipe) shares the cores.
 
-Work in pure Python (parsing Evolver files) runs in worker processes instead
-(:func:`worker_pool`), which a terminal's Ctrl-C ends at once and quietly.
+Work that holds the GIL can run in worker processes instead (:func:`worker_pool`), which a
+terminal's Ctrl-C ends at once and quietly.
 """
 
 from __future__ import annotations
