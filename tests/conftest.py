@@ -70,17 +70,3 @@ def ctrl_c_at_a_terminal(*args: str, when: Callable[[int], bool] = has_children)
     os.killpg(run.pid, signal.SIGINT)
     _, err = run.communicate(timeout=60)
     return run.returncode, err.decode()
-
-
-@pytest.fixture
-def no_interpreter(monkeypatch, tmp_path):
-    """Worker processes that end as they start: their interpreter may not be run. The resource
-    tracker, which every pool needs, is started first, from the real one."""
-    import multiprocessing.spawn
-    from multiprocessing import resource_tracker
-
-    resource_tracker.ensure_running()
-    forbidden = tmp_path / "python"
-    forbidden.write_text("#!/bin/sh\n")
-    forbidden.chmod(0o600)
-    monkeypatch.setattr(multiprocessing.spawn, "_python_exe", os.fsencode(forbidden))

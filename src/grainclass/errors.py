@@ -23,8 +23,3 @@ class OutputError(GrainclassError):
 class EmptyInputWarning(UserWarning):
     """An input that holds no grains (an empty file, comments only, a bare header): among
     several, it would otherwise go unnoticed."""
-
-
-class NoWorkersWarning(UserWarning):
-    """Worker processes could not start (no semaphores in a container, an interpreter that may
-    not be run): the work is done in this process instead, more slowly."""

@@ -6,8 +6,9 @@ the ranges at once. A stream of batches (the command line) runs whole batches at
 each on one thread, with results handed out in input order: no thread waits for another at
 every batch, which matters when a producer (plantri in a pipe) shares the cores.
 
-Work that holds the GIL can run in worker processes instead (:func:`worker_pool`), which a
-terminal's Ctrl-C ends at once and quietly.
+Worker processes started elsewhere (the census's Dask workers) start with Ctrl-C held back
+(:func:`interrupts_blocked`) and then end at once and quietly on it
+(:func:`end_quietly_on_interrupt`).
 """
 
 from __future__ import annotations
@@ -18,13 +19,9 @@ import itertools
 import os
 import signal
 import threading
-import warnings
-import weakref
 from collections.abc import Callable, Iterable, Iterator
-from concurrent.futures import Executor, Future, ProcessPoolExecutor, ThreadPoolExecutor
+from concurrent.futures import Future, ThreadPoolExecutor
 from typing import TypeVar
-
-from grainclass.errors import NoWorkersWarning
 
 T = TypeVar("T")
 R = TypeVar("R")
@@ -157,97 +154,6 @@ def interrupts_blocked() -> Iterator[None]:
         yield
     finally:
         signal.pthread_sigmask(signal.SIG_SETMASK, before)
-
-
-class _WorkerPool(ProcessPoolExecutor):
-    """Each submission (map's too) within :func:`interrupts_blocked`: a submission may start a
-    worker, so every worker starts with Ctrl-C held back, whichever call starts it. Shut down
-    one caller at a time: an interrupted command's :func:`stop_worker_pools` and the pool's own
-    user may both shut it down, and two at once close its result queue twice (Python 3.11: Bad
-    file descriptor)."""
-
-    def __init__(self, *args, **kwargs) -> None:
-        super().__init__(*args, **kwargs)
-        self._shutting_down = threading.Lock()
-        self._in_process: Executor | None = None
-
-    def submit(self, fn, /, *args, **kwargs):  # type: ignore[override]
-        if self._in_process is None:
-            try:
-                with interrupts_blocked():
-                    return super().submit(fn, *args, **kwargs)
-            except OSError as exc:  # no worker could start: this one and the rest run here
-                self._in_process = _in_process(exc)
-        return self._in_process.submit(fn, *args, **kwargs)
-
-    def shutdown(self, wait: bool = True, *, cancel_futures: bool = False) -> None:
-        with self._shutting_down:
-            super().shutdown(wait=wait, cancel_futures=cancel_futures)
-
-
-_worker_pools: weakref.WeakSet[ProcessPoolExecutor] = weakref.WeakSet()
-
-
-def worker_pool(workers: int) -> Executor:
-    """Spawned worker processes (not forked: the parent may be running compiled kernels in
-    threads) that end at once and quietly on Ctrl-C (ignoring it would keep their parent
-    waiting for their tasks); an interrupted command stops the pools with
-    :func:`stop_worker_pools`. Where no worker can start, an executor that runs each task in
-    this process as it is submitted, with a :class:`NoWorkersWarning`."""
-    from concurrent.futures.process import BrokenProcessPool
-    from multiprocessing import get_context
-
-    try:
-        pool = _WorkerPool(
-            workers, mp_context=get_context("spawn"), initializer=end_quietly_on_interrupt
-        )
-    except OSError as exc:  # its queues' semaphores, say, where /dev/shm is missing
-        return _in_process(exc)
-    _worker_pools.add(pool)
-    try:
-        # A worker that cannot start (an interpreter that may not be run, or is gone) dies
-        # unseen, and the pool breaks at whatever task comes first: find out before there are
-        # tasks to lose.
-        pool.submit(os.getpid).result()
-    except (OSError, BrokenProcessPool) as exc:
-        pool.shutdown(wait=True, cancel_futures=True)
-        return _in_process(exc)
-    return pool
-
-
-class _InProcess(Executor):
-    """A pool of worker processes that runs each task in this process as it is submitted."""
-
-    def submit(self, fn, /, *args, **kwargs):  # type: ignore[override]
-        future: Future = Future()
-        try:
-            future.set_result(fn(*args, **kwargs))
-        except Exception as exc:  # raised by result(), as from a worker
-            future.set_exception(exc)
-        return future
-
-
-def _in_process(failure: Exception) -> Executor:
-    """Where worker processes cannot start, the work is done here, more slowly, and the run
-    says so, rather than failing with a traceback (a broken pool), as an error of the output
-    file, or silently, as if its output pipe had closed (the resource tracker's Broken pipe)."""
-    why = failure.strerror if isinstance(failure, OSError) else None
-    warnings.warn(
-        f"worker processes could not start ({why or 'one ended as it started'}): "
-        "working in this process instead",
-        NoWorkersWarning,
-        stacklevel=3,
-    )
-    return _InProcess()
-
-
-def stop_worker_pools() -> None:
-    """Shut down every pool of :func:`worker_pool` still open, and wait for it. A pool whose
-    workers Ctrl-C ended is broken, and its thread closes its wake-up pipe as it ends: were
-    that still under way as the interpreter exits, Python 3.11's exit hook could write into the
-    pipe as it closes, and print a traceback (Bad file descriptor)."""
-    for pool in list(_worker_pools):
-        pool.shutdown(wait=True, cancel_futures=True)
 
 
 def end_quietly_on_interrupt(*_: object) -> None:

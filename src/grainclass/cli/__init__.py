@@ -89,12 +89,10 @@ def main() -> None:
         click.echo("grainclass: interrupted", err=True)
         code = ExitCode.INTERRUPTED
         stopped = True
-        signals.stop_worker_pools()
     except signals.Stopped as stop:
         click.echo(f"grainclass: stopped by {signal.Signals(stop.signum).name}", err=True)
         code = ExitCode.stopped_by(stop.signum)
         stopped = True
-        signals.stop_worker_pools()
     signals.all_done()
     if stopped and signals.threads_busy():
         # A thread still runs a kernel, or numba compiles one at a first run: the interpreter's

@@ -72,14 +72,6 @@ def all_done() -> None:
     _stopping = True
 
 
-def stop_worker_pools() -> None:
-    """Worker processes of an interrupted run, if it started any, stopped before exit."""
-    if "grainclass.parallel" in sys.modules:  # else none was started
-        from grainclass.parallel import stop_worker_pools as stop_pools
-
-        stop_pools()
-
-
 def threads_busy() -> bool:
     """Whether a thread of ours still runs a kernel (or numba compiles one)."""
     parallel = sys.modules.get("grainclass.parallel")
