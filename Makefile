@@ -85,7 +85,7 @@ lint: install
 	$(BIN)/python -m ruff check src tests scripts benchmarks
 	$(BIN)/python -m ruff format --check src tests scripts benchmarks
 
-# Speed and memory, measured in one run (plantri n = 14, 15, 16, three rounds; about ten minutes).
+# Speed and memory, measured in one run (plantri n = 14, 15, 16, three rounds; about fifteen minutes).
 bench: install
 	$(BIN)/python benchmarks/bench.py
 
