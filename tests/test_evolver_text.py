@@ -14,6 +14,7 @@ from hypothesis import strategies as st
 from conftest import EVOLVER_DATA
 from grainclass import classify, read_dataset
 from grainclass._kernels.evolver import ENTRY_BAD, ENTRY_OK, _parse_float
+from grainclass.readers.sniffing import sniff
 
 TWO_CUBES = (EVOLVER_DATA / "two_cubes.fe").read_text()
 
@@ -96,6 +97,28 @@ def test_comments_directives_and_joined_lines(tmp_path):
     )
     text = text.replace("\nbodies\n1\t1 2 3 4 5 6\n", "\nbodies\n1\t1 2 3 \\\n4 5 6 // the first\n")
     _same_rows(tmp_path, "\ufeff" + text)
+
+
+def test_section_keywords_with_a_colon(tmp_path):
+    """Surface Evolver reads `vertices:` as `vertices` (its own sphere.fe is written so)."""
+    text = TWO_CUBES
+    for word in ("vertices", "edges", "faces", "bodies"):
+        text = text.replace(f"\n{word}\n", f"\n{word}:\n")
+    assert text.count(":\n") == 4
+    assert sniff(text.encode()) == "evolver"
+    _same_rows(tmp_path, text)
+
+
+def test_a_volume_given_as_an_expression_is_computed_from_the_geometry(tmp_path):
+    """Surface Evolver evaluates `volume 2*pi/3`; grainclass does not, and measures the body:
+    the two cubes are unit cubes."""
+    text = TWO_CUBES.replace("\n1\t1 2 3 4 5 6\n", "\n1\t1 2 3 4 5 6 volume 2*pi/3\n")
+    assert text != TWO_CUBES
+    path = tmp_path / "expression.fe"
+    path.write_text(text)
+    rows = _rows(path)
+    assert [(r["status"], r["n_faces"]) for r in rows] == [("ok", 6), ("ok", 6)]
+    assert [r["volume"] for r in rows] == pytest.approx([1.0, 1.0], rel=1e-12)
 
 
 def test_numbers_left_to_python(tmp_path):

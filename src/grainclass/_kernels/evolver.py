@@ -61,7 +61,7 @@ GRAIN_FILE = 16  # the file's status is not FILE_OK
 USER_LIST, USER_FACET, USER_EDGE = 0, 1, 2
 
 SPACE, TAB, NEWLINE, RETURN, HASH, SLASH, STAR, BACKSLASH = 32, 9, 10, 13, 35, 47, 42, 92
-PLUS, MINUS, DOT, UNDERSCORE, ZERO, NINE = 43, 45, 46, 95, 48, 57
+PLUS, MINUS, DOT, UNDERSCORE, ZERO, NINE, COLON = 43, 45, 46, 95, 48, 57, 58
 LONGEST_ID = 18  # decimal digits: past them an id does not fit int64
 
 _W_VERTICES = np.frombuffer(b"vertices", np.uint8)
@@ -533,7 +533,10 @@ def _tokenize(buf, file_starts, marker, marker_ends):
                     )
                 n += 1
                 continue
-            # A keyword line.
+            # A keyword line. Surface Evolver takes a section's keyword with a colon too
+            # (`vertices:`, as in its own sphere.fe).
+            if e0 - s0 > 1 and buf[e0 - 1] == COLON:
+                e0 -= 1
             is_section = (
                 _word_is(buf, s0, e0, _W_VERTICES)
                 or _word_is(buf, s0, e0, _W_EDGES)
@@ -685,11 +688,13 @@ def _list_entry(
                 status[n] = ENTRY_BAD
                 break
             code, value = _parse_float(buf, tok_s[t + 1], tok_e[t + 1])
+            if code == ENTRY_BAD:
+                # An expression (`volume 2*pi*rad^3/3`), which Surface Evolver evaluates and
+                # grainclass does not: the volume is computed from the geometry instead.
+                break
             xyz[n, 0] = value
             flag[n] = 1
-            if code == ENTRY_BAD:
-                status[n] = ENTRY_BAD
-            elif code == ENTRY_SLOW and status[n] != ENTRY_BAD:
+            if code == ENTRY_SLOW and status[n] != ENTRY_BAD:
                 status[n] = ENTRY_SLOW
                 n_slow = _slow_number(slow, n_slow, n, SLOW_VOLUME, tok_s[t + 1], tok_e[t + 1])
             break

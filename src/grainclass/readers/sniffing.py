@@ -15,7 +15,7 @@ from grainclass.readers.voro import looks_like_voro
 
 SNIFF_BYTES = 4096  # the first bytes of an input that name its format
 _BOM = b"\xef\xbb\xbf"  # what some Windows editors put before UTF-8 text
-_EVOLVER = re.compile(rb"(?im)^\s*(vertices|torus_filled|torus|periods)\s*(//.*)?$")
+_EVOLVER = re.compile(rb"(?im)^\s*(vertices|torus_filled|torus|periods):?\s*(//.*)?$")
 
 # Files that hold no grains a reader could take, by their first bytes (whole magic numbers: a
 # grain id may start with "BZh"): named, not misread (their 0 bytes would make them planar_code).
