@@ -103,6 +103,15 @@ POLY2 = "    2 6 -2 7 8 9 10 11\n"
 FACE11 = "   11 4 8 9 12 11\n     4 -18 -15 -19 7\n"
 
 
+@pytest.mark.parametrize("edges", ["-15 -19 7 -18", "7 -18 -15 -19"])
+def test_a_face_may_list_its_edges_from_another_vertex(edges):
+    """Neper writes some faces' edges starting at another vertex than their vertices: the
+    same sides, so the same two unit cubes."""
+    rows = _rows_of(TWO.replace(FACE11, f"   11 4 8 9 12 11\n     4 {edges}\n"))
+    assert [(r["status"], r["n_faces"]) for r in rows] == [("ok", 6), ("ok", 6)]
+    assert [r["volume"] for r in rows] == pytest.approx([1.0, 1.0], rel=1e-12)
+
+
 @pytest.mark.parametrize(
     ("old", "new", "message"),
     [

@@ -259,15 +259,22 @@ def _check_face(
         return None, f"face {face_id} repeats a vertex"
     if len(signed_edges) != len(loop):
         return None, f"face {face_id} has {len(loop)} vertices but {len(signed_edges)} edges"
-    for j, signed in enumerate(signed_edges):
-        ends = frozenset((loop[j], loop[(j + 1) % len(loop)]))
+    # A face's edges go round it as its vertices do, but Neper may start them at another
+    # vertex: each side of the loop needs one edge of the list, wherever it is.
+    sides = [(loop[j], loop[(j + 1) % len(loop)]) for j in range(len(loop))]
+    unmatched = {frozenset(side) for side in sides}
+    stray = None
+    for signed in signed_edges:
         if abs(signed) not in edges:
             return None, f"face {face_id}: edge {abs(signed)} does not exist"
-        if edges[abs(signed)] != ends:
-            return None, (
-                f"face {face_id}: edge {abs(signed)} does not join vertices "
-                f"{loop[j]} and {loop[(j + 1) % len(loop)]}"
-            )
+        ends = edges[abs(signed)]
+        if ends in unmatched:
+            unmatched.discard(ends)
+        elif stray is None:
+            stray = abs(signed)
+    if stray is not None:
+        a, b = next(side for side in sides if frozenset(side) in unmatched)
+        return None, f"face {face_id}: edge {stray} does not join vertices {a} and {b}"
     return loop, None
 
 
