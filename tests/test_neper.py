@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import io
+import re
 from pathlib import Path
 
 import numpy as np
@@ -101,6 +102,67 @@ def test_a_polyhedron_with_a_missing_face_is_an_invalid_row():
 TWO = (DATA / "two_cells.tess").read_text()
 POLY2 = "    2 6 -2 7 8 9 10 11\n"
 FACE11 = "   11 4 8 9 12 11\n     4 -18 -15 -19 7\n"
+
+
+# A square pyramid whose faces Neper numbers 11 (the base) to 15: its apex is a corner of four
+# faces, 12 to 15, each listed with its vertices outward.
+PYRAMID = """***tess
+ **format
+   3.4
+ **general
+   3 standard
+ **vertex
+ 5
+    1  0 0 0     0
+    2  1 0 0     0
+    3  1 1 0     0
+    4  0 1 0     0
+    5  0.5 0.5 1     0
+ **edge
+ 8
+    1  1 2 0
+    2  2 3 0
+    3  3 4 0
+    4  4 1 0
+    5  1 5 0
+    6  2 5 0
+    7  3 5 0
+    8  4 5 0
+ **face
+ 5
+   11 4 1 4 3 2
+     4 -4 -3 -2 -1
+    0 0 0 0
+     0 0 0 0 0
+   12 3 1 2 5
+     3 1 6 -5
+    0 0 0 0
+     0 0 0 0 0
+   13 3 2 3 5
+     3 2 7 -6
+    0 0 0 0
+     0 0 0 0 0
+   14 3 3 4 5
+     3 3 8 -7
+    0 0 0 0
+     0 0 0 0 0
+   15 3 4 1 5
+     3 4 5 -8
+    0 0 0 0
+     0 0 0 0 0
+ **polyhedron
+ 1
+    1 5 11 12 13 14 15
+***end
+"""
+
+
+def test_messages_name_faces_by_their_ids_in_the_file():
+    (row,) = _rows_of(PYRAMID)
+    assert row["status"] == "non_simple"
+    assert row["volume"] == pytest.approx(1 / 3, rel=1e-12)
+    assert re.search(r"a corner where 4 faces meet \(face (12|13|14|15) is one of them\)$",
+                     row["error"]), row["error"]  # fmt: skip
 
 
 @pytest.mark.parametrize("edges", ["-15 -19 7 -18", "7 -18 -15 -19"])

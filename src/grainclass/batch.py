@@ -63,6 +63,9 @@ class GrainBatch:
         the input does not tell.
     attributes : dict of str to list of (str or None)
         Further ``key=value`` fields of the input, kept as string columns.
+    face_labels : numpy.ndarray of int64, shape (F,), optional
+        The input's own id of each face (Neper's face ids), by which messages name faces;
+        without them a face is named by its 0-based position in its grain.
     """
 
     source: str | list[str]
@@ -77,6 +80,7 @@ class GrainBatch:
     boundary: np.ndarray | None = None
     parse_errors: dict[int, str] = field(default_factory=dict)
     attributes: dict[str, list[str | None]] = field(default_factory=dict)
+    face_labels: np.ndarray | None = None
 
     def __post_init__(self) -> None:
         # Coerce once at the boundary so that the kernels see one layout only.
@@ -98,6 +102,11 @@ class GrainBatch:
             raise ValueError("location needs one entry per grain")
         if not isinstance(self.source, str) and len(self.source) != g:
             raise ValueError("source needs one entry per grain, or one for all")
+        if self.face_labels is not None:
+            labels = np.ascontiguousarray(self.face_labels, dtype=np.int64)
+            object.__setattr__(self, "face_labels", labels)
+            if labels.shape != (self.face_offsets[-1],):
+                raise ValueError("face_labels needs one entry per face")
 
     def __len__(self) -> int:
         return len(self.grain_id)

@@ -30,7 +30,7 @@ _MESSAGES = {
     codes.E_FEW_NEIGHBOURS: "face {a} has {b} neighbour(s); a face needs at least 2",
     codes.E_TWO_GON: "degenerate: face {a} is a 2-gon",
     codes.E_SHARED_EDGES: "degenerate: faces {a} and {b} share more than one edge",
-    codes.E_DISCONNECTED: "not connected: face {a} cannot be reached from face 0",
+    codes.E_DISCONNECTED: "not connected: face {a} cannot be reached from face {first}",
     codes.E_TOO_MANY_EDGES: "not a sphere: {a} adjacencies, but a grain with {n} faces "
     "has at most 3n-6 = {b}",
     codes.E_EULER: "not a sphere: the neighbour lists, read as cyclic orders, "
@@ -77,6 +77,28 @@ def _where(batch: GrainBatch, g: int) -> str:
     return f"{source}: record {batch.location[g]}"
 
 
+# The parameters of a message that are faces of the grain, named by the input's face ids
+# where it has them (GrainBatch.face_labels).
+_FACE_PARAMETERS = {
+    codes.E_SELF: "a",
+    codes.E_ASYMMETRIC: "ab",
+    codes.E_FEW_NEIGHBOURS: "a",
+    codes.E_TWO_GON: "a",
+    codes.E_SHARED_EDGES: "ab",
+    codes.E_DISCONNECTED: "a",
+    codes.E_NOT_SPHERE: "ab",
+    codes.E_NON_SIMPLE: "b",
+}
+
+
+def _face_name(batch: GrainBatch, g: int, face: int) -> int:
+    """Face ``face`` of grain ``g`` as the input names it."""
+    labels = batch.face_labels
+    if labels is None or not 0 <= face < batch.n_faces[g]:
+        return face
+    return int(labels[batch.face_offsets[g] + face])
+
+
 def _asymmetry(batch: GrainBatch, g: int, a: int, b: int) -> tuple[str, str]:
     """How often face a lists face b, and what face b's list does about face a, in words."""
 
@@ -91,7 +113,9 @@ def _asymmetry(batch: GrainBatch, g: int, a: int, b: int) -> tuple[str, str]:
     back = listed(b, a)
     return (
         f" {times(listed(a, b))}",
-        f"lists face {a} {times(back)}" if back else f"does not list face {a}",
+        f"lists face {_face_name(batch, g, a)} {times(back)}"
+        if back
+        else f"does not list face {_face_name(batch, g, a)}",
     )
 
 
@@ -107,9 +131,12 @@ def _error_messages(batch: GrainBatch, status: np.ndarray, err: np.ndarray) -> l
             ab, ba = _asymmetry(batch, int(g), a, b) if code == codes.E_ASYMMETRIC else ("", "")
             darts = int(batch.nbr_offsets[batch.face_offsets[g + 1]])
             darts -= int(batch.nbr_offsets[batch.face_offsets[g]])
+            faces = _FACE_PARAMETERS.get(code, "")
             what = _MESSAGES[code].format(
-                a=a, b=b, n=n, last=n - 1, edges=3 * n - 6, ab=ab, ba=ba,
-                darts=darts, a_mb=_mb(a), b_mb=_mb(b),
+                a=_face_name(batch, int(g), a) if "a" in faces else a,
+                b=_face_name(batch, int(g), b) if "b" in faces else b,
+                first=_face_name(batch, int(g), 0), n=n, last=n - 1, edges=3 * n - 6,
+                ab=ab, ba=ba, darts=darts, a_mb=_mb(a), b_mb=_mb(b),
             )  # fmt: skip
         messages[g] = f"{_where(batch, g)}: {what}"
     return messages

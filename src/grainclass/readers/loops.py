@@ -26,9 +26,11 @@ def batch_from_loops(
     source: str,
     location_kind: str = "line",
     boundary: Sequence[bool | None] | None = None,
+    face_labels: Sequence[Sequence[int] | None] | None = None,
 ) -> GrainBatch:
     """A batch from (id, location, loops or None, volume, area, error) tuples; ``boundary``
-    flags grains cut by the sample boundary (None where the input does not tell).
+    flags grains cut by the sample boundary (None where the input does not tell);
+    ``face_labels``, the input's id of each loop of each grain, name faces in messages.
 
     The face adjacency is built by a compiled kernel (``_kernels/loops.py``); a grain whose
     loops do not close into a surface (an edge not on exactly two faces) becomes an invalid
@@ -42,13 +44,15 @@ def batch_from_loops(
     [4, 3, 2, 1]
     """
     rows = _Rows(source, location_kind)
-    face_counts, loop_lengths, corners = [], [], []
-    for grain_id, location, loops, volume, area, error in grains:
+    face_counts, loop_lengths, corners, labels = [], [], [], []
+    for k, (grain_id, location, loops, volume, area, error) in enumerate(grains):
         rows.add(grain_id, location, volume, area, error)
         if error is None and loops is not None:
             face_counts.append(len(loops))
             loop_lengths.extend(len(loop) for loop in loops)
             corners.extend(itertools.chain.from_iterable(loops))
+            if face_labels is not None:
+                labels.extend(face_labels[k] or range(len(loops)))
         else:
             face_counts.append(0)
     return rows.batch(
@@ -56,6 +60,7 @@ def batch_from_loops(
         offsets_from_counts(loop_lengths),
         np.asarray(corners, np.int64),
         boundary,
+        None if face_labels is None else np.asarray(labels, np.int64),
     )
 
 
@@ -134,9 +139,11 @@ class _Rows:
         loop_offsets: np.ndarray,
         corners: np.ndarray,
         boundary: Sequence[bool | None] | None,
+        face_labels: np.ndarray | None = None,
     ) -> GrainBatch:
         """The batch, with each grain's ``face_counts[g]`` loops, loop k being
-        ``corners[loop_offsets[k]:loop_offsets[k + 1]]`` (0 loops for a row with an error)."""
+        ``corners[loop_offsets[k]:loop_offsets[k + 1]]`` (0 loops for a row with an error),
+        and loop k's id in the input ``face_labels[k]``, if given."""
         from grainclass._kernels.loops import OPEN, PINCHED, _adjacency_from_loops
 
         face_offsets = offsets_from_counts(face_counts)
@@ -160,6 +167,8 @@ class _Rows:
                     "with one id, where the surface touches itself, or a handle)"
                 )
             kept_faces = np.flatnonzero(np.repeat(~not_sphere, face_counts))
+            if face_labels is not None:
+                face_labels = face_labels[kept_faces]
             nbr_counts = np.diff(nbr_offsets)[kept_faces]
             neighbors = neighbors[run_indices(nbr_offsets[:-1][kept_faces], nbr_counts)]
             face_offsets = offsets_from_counts(np.where(not_sphere, 0, face_counts))
@@ -176,6 +185,7 @@ class _Rows:
             volume=np.asarray(self.volumes, np.float64),
             area=np.asarray(self.areas, np.float64),
             boundary=None if boundary is None else tri_state(boundary),
+            face_labels=face_labels,
         )
 
 

@@ -360,6 +360,10 @@ def read_neper(stream: BinaryIO, source: str, chunk_size: int) -> Iterator[Grain
             ],
             source,
             boundary=boundary[start:stop],
+            face_labels=[
+                None if entry[2] is None else [abs(f) for f in entry[2]]
+                for entry in entries[start:stop]
+            ],
         )
 
 
