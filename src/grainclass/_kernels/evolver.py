@@ -249,7 +249,7 @@ def _parse_int(buf, s, e):
         c = buf[q]
         if not ZERO <= c <= NINE:
             return False, 0
-        value = value * 10 + (c - ZERO)
+        value = value * 10 + (int(c) - ZERO)
     return True, -value if negative else value
 
 
@@ -284,7 +284,7 @@ def _parse_float(buf, s, e):
         if mantissa or buf[p] != ZERO:
             if digits == 19:
                 return ENTRY_SLOW, 0.0
-            mantissa = mantissa * 10 + (buf[p] - ZERO)
+            mantissa = mantissa * 10 + (int(buf[p]) - ZERO)
             digits += 1
         p += 1
     if p < e and buf[p] == DOT:
@@ -294,7 +294,7 @@ def _parse_float(buf, s, e):
             if mantissa or buf[p] != ZERO:
                 if digits == 19:
                     return ENTRY_SLOW, 0.0
-                mantissa = mantissa * 10 + (buf[p] - ZERO)
+                mantissa = mantissa * 10 + (int(buf[p]) - ZERO)
                 digits += 1
             exponent -= 1
             p += 1
@@ -311,7 +311,7 @@ def _parse_float(buf, s, e):
         given = 0
         while p < e and ZERO <= buf[p] <= NINE:
             if given < 100000:
-                given = given * 10 + (buf[p] - ZERO)
+                given = given * 10 + (int(buf[p]) - ZERO)
             p += 1
         exponent += -given if exp_negative else given
     if p < e:

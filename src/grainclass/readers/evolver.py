@@ -185,24 +185,25 @@ def _read_part(paths: list[str], triple_edges: tuple[str, str]) -> _Part:
         _slow_numbers(buf, tokens)
     for k in refused:
         file_status[k] = -1
-    grains = kernels._assemble(
-        kind,
-        ident,
-        line_of,
-        status,
-        first,
-        last,
-        xyz,
-        wraps,
-        flag,
-        ids,
-        file_status,
-        periodic,
-        periods,
-        entry_start,
-        entry_end,
-        facets_line,
-    )
+    with np.errstate(over="ignore"):  # the ids' hash wraps modulo 2**64 (seen without the JIT)
+        grains = kernels._assemble(
+            kind,
+            ident,
+            line_of,
+            status,
+            first,
+            last,
+            xyz,
+            wraps,
+            flag,
+            ids,
+            file_status,
+            periodic,
+            periods,
+            entry_start,
+            entry_end,
+            facets_line,
+        )
     g_file, g_body, g_line, g_code, g_params, g_volume, g_given, g_boundary = grains[:8]
     g_faces, nbr_counts, neighbors, position, corners, loop_sizes, loop_grain = grains[8:]
     n = len(g_file)
