@@ -93,10 +93,10 @@ _FACE_PARAMETERS = {
 
 def _face_name(batch: GrainBatch, g: int, face: int) -> int:
     """Face ``face`` of grain ``g`` as the input names it."""
-    labels = batch.face_labels
-    if labels is None or not 0 <= face < batch.n_faces[g]:
+    labels, start = batch.face_labels, int(batch.face_offsets[g])
+    if labels is None or not 0 <= face < int(batch.face_offsets[g + 1]) - start:
         return face
-    return int(labels[batch.face_offsets[g] + face])
+    return int(labels[start + face])
 
 
 def _asymmetry(batch: GrainBatch, g: int, a: int, b: int) -> tuple[str, str]:
