@@ -811,6 +811,23 @@ def _slots(ids, extra):
 
 
 @njit(no_cpython_wrapper=True)
+def _slot_entries(rows, slot, n, ident, status, line_of):
+    """For ``n`` slots, of which entries ``rows`` fill ``slot``: each slot's id, its readable
+    entry (-1: none) and its last unreadable line (0: none)."""
+    slot_id = np.empty(n, np.int64)
+    entry = np.full(n, -1, np.int64)
+    bad = np.zeros(n, np.int64)
+    for j in range(rows.shape[0]):
+        i = rows[j]
+        slot_id[slot[j]] = ident[i]
+        if status[i] == ENTRY_OK:
+            entry[slot[j]] = i
+        else:
+            bad[slot[j]] = line_of[i]
+    return slot_id, entry, bad
+
+
+@njit(no_cpython_wrapper=True)
 def _reserve(a, need):
     """``a``, or a copy twice as long, so that it holds ``need`` items."""
     if a.shape[0] >= need:
@@ -871,14 +888,7 @@ def _file_tables(f0, f1, kind, ident, line_of, status, first, last, wraps, flag,
     nv = v_map[2][0]
     e_map, e_slot = _slots(ident[e_rows], 0)
     ne = e_map[2][0]
-    e_entry = np.full(ne, -1, np.int64)
-    e_bad = np.zeros(ne, np.int64)
-    for j in range(e_rows.shape[0]):
-        i = e_rows[j]
-        if status[i] == ENTRY_OK:
-            e_entry[e_slot[j]] = i
-        else:
-            e_bad[e_slot[j]] = line_of[i]
+    e_id, e_entry, e_bad = _slot_entries(e_rows, e_slot, ne, ident, status, line_of)
     # Edges may name vertices without a line: they get keys past the vertices' slots.
     e_tail = np.full(ne, -1, np.int64)
     e_head = np.full(ne, -1, np.int64)
@@ -887,29 +897,16 @@ def _file_tables(f0, f1, kind, ident, line_of, status, first, last, wraps, flag,
         if i >= 0:
             e_tail[s] = _slot(v_map, first[i], True)
             e_head[s] = _slot(v_map, last[i], True)
-    n_keys = v_map[2][0]
-    vk_id = np.empty(n_keys, np.int64)
-    vk_entry = np.full(n_keys, -1, np.int64)
-    vk_bad = np.zeros(n_keys, np.int64)
-    for j in range(v_rows.shape[0]):
-        i = v_rows[j]
-        vk_id[v_slot[j]] = ident[i]
-        if status[i] == ENTRY_OK:
-            vk_entry[v_slot[j]] = i
-        else:
-            vk_bad[v_slot[j]] = line_of[i]
+    vk_id, vk_entry, vk_bad = _slot_entries(v_rows, v_slot, v_map[2][0], ident, status, line_of)
     for h in range(v_map[0].shape[0]):
         if v_map[1][h] >= nv:
             vk_id[v_map[1][h]] = v_map[0][h]
     for h in range(v_map[3].shape[0]):
         if v_map[3][h] >= nv:
             vk_id[v_map[3][h]] = h
-    e_id = np.empty(ne, np.int64)
     e_wrap = np.zeros((ne, 3), np.int64)
     e_triple = np.zeros(ne, np.bool_)
     marked = False
-    for j in range(e_rows.shape[0]):
-        e_id[e_slot[j]] = ident[e_rows[j]]
     for s in range(ne):
         i = e_entry[s]
         if i < 0:
@@ -921,16 +918,7 @@ def _file_tables(f0, f1, kind, ident, line_of, status, first, last, wraps, flag,
     # Facets.
     f_map, f_slot = _slots(ident[f_rows], 0)
     nf = f_map[2][0]
-    f_entry = np.full(nf, -1, np.int64)
-    f_bad = np.zeros(nf, np.int64)
-    f_id = np.empty(nf, np.int64)
-    for j in range(f_rows.shape[0]):
-        i = f_rows[j]
-        f_id[f_slot[j]] = ident[i]
-        if status[i] == ENTRY_OK:
-            f_entry[f_slot[j]] = i
-        else:
-            f_bad[f_slot[j]] = line_of[i]
+    f_id, f_entry, f_bad = _slot_entries(f_rows, f_slot, nf, ident, status, line_of)
     pos_start = np.zeros(nf + 1, np.int64)
     for s in range(nf):
         i = f_entry[s]
