@@ -26,7 +26,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from grainclass import DEFAULT_CHUNK_SIZE
-from grainclass.errors import GrainclassError
+from grainclass.errors import CensusError
 from grainclass.plantri import CHECKS, plantri_count, plantri_version, run_plantri
 from grainclass.vocabulary import TABLES
 
@@ -37,10 +37,6 @@ if TYPE_CHECKING:
     from grainclass.summary import Summary
 
 PROGRESS_TOPIC = "grainclass-census-progress"
-
-
-class CensusError(GrainclassError):
-    """A part whose triangulations read are not as many as plantri reports having written."""
 
 
 @dataclass(frozen=True, order=True)

@@ -18,16 +18,12 @@ import numpy as np
 import pandas as pd
 
 from grainclass import schema, vocabulary
-from grainclass.errors import GrainclassError
+from grainclass.errors import DataError
 from grainclass.summary import ROUND_LEVELS, Summary
 
 COLUMNS = ["dataset", "series", "x", "y"]
 ROUND_PEAK = "Round (flag peak)"
 WITH_ERRORS = [*COLUMNS, "yerr"]
-
-
-class FigureError(GrainclassError):
-    """A data set that cannot give the figure asked for (no ok grains, no volumes, no step)."""
 
 
 # Edge errors per grain of fig. combined_cut_types: the first data set of ``edge-errors`` is
@@ -57,7 +53,7 @@ def _require_ok_grains(dataset: Dataset) -> None:
     else:
         ok = 0 if dataset.types is None else int(dataset.types["count"].sum())
     if not ok:
-        raise FigureError(f"{dataset.label}: no ok grains to draw")
+        raise DataError(f"{dataset.label}: no ok grains to draw")
 
 
 def _frame(rows: list[dict], columns: list[str]) -> pd.DataFrame:
@@ -76,7 +72,7 @@ def round_levels(datasets: Sequence[Dataset], n_values: Sequence[int] = ()) -> p
         for label in wanted:
             row = table[table["grains"] == label].iloc[0]
             if not row["count"]:
-                raise FigureError(f"{dataset.label}: no ok grains with {label[2:]} faces")
+                raise DataError(f"{dataset.label}: no ok grains with {label[2:]} faces")
             for k in ROUND_LEVELS:
                 y = row["round0" if k == 0 else f"round<={k}"]
                 rows.append({"dataset": dataset.label, "series": label, "x": k, "y": y})
@@ -113,7 +109,7 @@ def _geometry(datasets: Sequence[Dataset], by: str, kind: str) -> pd.DataFrame:
         table = dataset.summary.geometry
         table = table[table["by"] == by]
         if table.empty:
-            raise FigureError(
+            raise DataError(
                 f"{dataset.label}: no ok grain has a volume and an area, which the isoperimetric "
                 f"quotient of {kind} needs (inputs with volume= and area=, Evolver, Voro++ or "
                 "Neper geometry)"
@@ -191,7 +187,7 @@ def steps_from_names(paths: Sequence[str]) -> list[float]:
 
     Raises
     ------
-    FigureError
+    DataError
         For a name with no number or several, or two inputs with the same step.
     """
     steps = []
@@ -201,7 +197,7 @@ def steps_from_names(paths: Sequence[str]) -> list[float]:
         numbers = re.findall(r"\d+(?:\.\d+)?", stem)
         if len(numbers) != 1:
             found = "no number" if not numbers else f"{len(numbers)} numbers"
-            raise FigureError(
+            raise DataError(
                 f"{path}: cannot read a time step from its name ({found} in {stem!r}): "
                 "give the steps with --times"
             )
@@ -214,7 +210,7 @@ def _require_distinct(paths: Sequence[str], steps: Sequence[float]) -> None:
     seen: dict[float, str] = {}
     for path, step in zip(paths, steps, strict=True):
         if step in seen:
-            raise FigureError(f"{path}: time step {step:g} is also that of {seen[step]}")
+            raise DataError(f"{path}: time step {step:g} is also that of {seen[step]}")
         seen[step] = path
 
 
@@ -289,7 +285,7 @@ def _edge_error_datasets(
 
     first = paths[0]
     if is_parquet(first):
-        raise FigureError(
+        raise DataError(
             f"{first}: edge-errors flips the edges of the first input's grains, which a "
             "classified Parquet table no longer holds: give the grains themselves (adjacency "
             "text, planar_code, Evolver, ...)"

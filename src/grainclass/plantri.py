@@ -19,16 +19,12 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import BinaryIO
 
-from grainclass.errors import GrainclassError
+from grainclass.errors import GrainclassError, PlantriError
 
 # plantri's own counts, by the flags that select them: all triangulations (-u), the
 # 4-connected ones (-c4) and those of minimum degree 4 (-m4).
 CHECKS = {"all": ("-u",), "flag": ("-u", "-c4"), "min_degree_4": ("-u", "-m4")}
 _COUNT_LINE = re.compile(rb"(\d+) triangulations (?:written|generated)")
-
-
-class PlantriError(GrainclassError):
-    """plantri failed, or its report says no number of triangulations."""
 
 
 def find_plantri() -> str:

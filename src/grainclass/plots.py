@@ -17,7 +17,7 @@ import numpy as np
 import pandas as pd
 
 from grainclass import vocabulary
-from grainclass.errors import GrainclassError
+from grainclass.errors import MissingDependencyError
 from grainclass.figures import ROUND_PEAK
 
 if TYPE_CHECKING:
@@ -29,10 +29,6 @@ MARKERS = ("o", "s", "^", "D", "v", "P", "X", "*", "<", ">")
 LINES = ("-", "--", ":", "-.")
 Q_LABEL = "mean isoperimetric quotient $Q = 36\\pi V^2/S^3$"
 N_LABEL = "number of faces $n$"
-
-
-class PlottingUnavailable(GrainclassError):
-    """matplotlib is not installed: ``pip install 'grainclass[plot]'``."""
 
 
 def figure_format(path: str) -> str:
@@ -50,11 +46,11 @@ def figure_format(path: str) -> str:
 
 
 def require_matplotlib() -> None:
-    """Raise :class:`PlottingUnavailable` unless matplotlib can be imported."""
+    """Raise :class:`MissingDependencyError` unless matplotlib can be imported."""
     try:
         import matplotlib  # noqa: F401
     except ImportError:
-        raise PlottingUnavailable(
+        raise MissingDependencyError(
             "plotting needs matplotlib, which is not installed: pip install 'grainclass[plot]'"
         ) from None
 
@@ -273,7 +269,7 @@ def draw(kind: str, data: pd.DataFrame, path: str) -> None:
 
     Raises
     ------
-    PlottingUnavailable
+    MissingDependencyError
         Without matplotlib.
     """
     from grainclass.atomic import atomic_output

@@ -160,12 +160,12 @@ def plot_cmd(
     from grainclass.errors import GrainclassError
     from grainclass.figures import figure_data, read_datasets
     from grainclass.parallel import set_jobs
-    from grainclass.plots import PlottingUnavailable, draw, require_matplotlib
+    from grainclass.plots import draw, require_matplotlib
 
     try:
         require_matplotlib()
-    except PlottingUnavailable as exc:
-        raise click.UsageError(str(exc)) from None
+    except GrainclassError as exc:
+        raise click.ClickException(str(exc)) from None
     if jobs is not None:
         set_jobs(jobs)
     names = list(inputs) if kind == "evolution" else list(labels) or [_name(p) for p in inputs]
