@@ -202,4 +202,4 @@ def test_a_table_without_belts_is_refused_with_what_to_do(tmp_path):
     pq.write_table(classify(GrainBatch.from_lists([reference_cube()])), out)
     result = CliRunner().invoke(cli, ["penalties", str(out), "-q"])
     assert result.exit_code == 1
-    assert "--belts" in result.output
+    assert "classify the input again with --belt-length 6" in result.output

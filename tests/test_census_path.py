@@ -19,6 +19,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from grainclass.options import ReadOptions
 from grainclass.pipeline import tallies
 from grainclass.readers.planar_code import PlanarCodeRecords, read_planar_code
 from grainclass.summary import group_rows, merge_tallies, summarize, tally_batch
@@ -188,8 +189,8 @@ def test_summary_from_bytes_equals_summary_from_classified_rows(plantri_output):
     from grainclass.pipeline import classified_tables
 
     path = str(plantri_output(10))
-    counted = summarize(tallies([path]))
-    from_rows = summarize(classified_tables([path], types=False))
+    counted = summarize(tallies([path], ReadOptions(types=False)))
+    from_rows = summarize(classified_tables([path], ReadOptions(types=False)))
     for name in ("classes", "round", "split"):
         assert counted.table(name).equals(from_rows.table(name)), name
     assert counted.headline == from_rows.headline

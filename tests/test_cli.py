@@ -125,7 +125,7 @@ def test_classify_writes_parquet_to_standard_output(runner):
 def test_classify_strict_exits_1_but_keeps_every_row(runner, tmp_path):
     result, out = _classify(runner, tmp_path, EXAMPLES / "bad-grains.txt", extra=["--strict"])
     assert result.exit_code == 1
-    assert "9 grain(s) are not simple polytopes" in result.stderr
+    assert "--strict: 9 grains are not ok" in result.stderr
     assert pq.read_table(out).num_rows == 12
 
 
@@ -920,12 +920,13 @@ def test_a_head_cut_across_reads_is_still_sniffed(monkeypatch, tmp_path, kind):
     """A peek takes what one read gives: the first 8 bytes of '>>planar_code<<' alone made the
     stream adjacency text (every record an invalid row), 2 bytes of 'PAR1' raw grains. An
     input shorter than the head ends where it ends: a terminal gives more after a Ctrl-D."""
+    from grainclass.options import ReadOptions
     from grainclass.pipeline import grain_tables
 
     if kind == "short text":
         reads = _Reads([CUBE_LINE[:5].encode(), CUBE_LINE[5:].encode(), b"", b"x\t0 1\n"])
         monkeypatch.setattr(sys, "stdin", io.TextIOWrapper(io.BufferedReader(reads)))
-        (table,) = grain_tables(["-"], ["status", "weinberg"])
+        (table,) = grain_tables(["-"], ["status", "weinberg"], ReadOptions())
         assert table.column("status").to_pylist() == ["ok"]
         return
     if kind == "planar_code":
@@ -939,7 +940,7 @@ def test_a_head_cut_across_reads_is_still_sniffed(monkeypatch, tmp_path, kind):
         [data[: 2 if kind == "parquet" else 8], data[8 if kind != "parquet" else 2 :], b"", b"x"]
     )
     monkeypatch.setattr(sys, "stdin", io.TextIOWrapper(io.BufferedReader(reads)))
-    tables = list(grain_tables(["-"], ["status", "weinberg"]))
+    tables = list(grain_tables(["-"], ["status", "weinberg"], ReadOptions()))
     assert sum(t.column("status").to_pylist().count("ok") for t in tables) == 233
     assert sum(len(t) for t in tables) == 233
 

@@ -109,6 +109,19 @@ def test_readme_library_example_runs(tmp_path, monkeypatch):
             assert eval(code, namespace) == int(comment)
 
 
+def test_library_page_runs_in_order_from_the_repository_root(monkeypatch, capsys):
+    """Every Python block of docs/library.md runs, one after another in one namespace, from the
+    repository root, as a reader pastes them; the blocks' own asserts check what they say."""
+    page = (ROOT / "docs" / "library.md").read_text()
+    blocks = re.findall(r"```python\n(.*?)```", page, re.DOTALL)
+    assert len(blocks) >= 5
+    monkeypatch.chdir(ROOT)
+    namespace: dict = {}
+    for block in blocks:
+        exec(block, namespace)
+    assert "cube" in capsys.readouterr().out
+
+
 @cache
 def _anchors(path: Path) -> frozenset[str]:
     """The anchors GitHub gives the headings of a Markdown file (outside code blocks)."""

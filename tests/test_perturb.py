@@ -448,7 +448,7 @@ def test_perturb_pipes_into_summarize(tmp_path, voronoi_grains):
     saved = _write(tmp_path / "perturbed.txt", perturbed.stdout.decode())
     alone = _ok("summarize", saved, "--table", "round", "--format", "csv").stdout
     assert piped.stdout == alone
-    assert "2000 grains: 2000 ok, 1 flip(s) each" in perturbed.stderr.decode()
+    assert "2000 grains: 2000 ok, 1 flip each" in perturbed.stderr.decode()
 
 
 # The edge-errors figure (fig. combined_cut_types) -------------------------------------------------

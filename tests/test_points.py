@@ -222,7 +222,7 @@ def test_laguerre_points_without_a_cell_are_named(tmp_path):
     points.write_text("1 0.5 0.5 0.5 0.45\n2 0.51 0.5 0.5 0.0\n3 0.1 0.1 0.1 0.1\n")
     result = _run("--points", str(points), "-o", str(tmp_path / "out.parquet"))
     assert result.exit_code == 0, result.output
-    assert "1 point(s) without a cell (hidden by their neighbours' radii)" in result.stderr
+    assert "1 point without a cell (hidden by their neighbours' radii)" in result.stderr
     assert pq.read_table(tmp_path / "out.parquet")["grain_id"].to_pylist() == ["1", "3"]
 
 

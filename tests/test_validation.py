@@ -174,7 +174,7 @@ def test_text_format_named_on_utf16_or_compressed_input_says_what_it_is(tmp_path
     path.write_bytes(gzip.compress(text.encode()) if packing == "gzip" else text.encode(packing))
     why = {"utf-16": "UTF-16 text", "utf-16-le": "UTF-16LE text", "gzip": "gzip-compressed"}
     with pytest.raises(InputError, match=why[packing]):
-        list(read_dataset(str(path), format=fmt))
+        list(read_dataset(str(path), input_format=fmt))
 
 
 def test_planar_code_named_reads_what_it_is_given(tmp_path):
@@ -182,7 +182,7 @@ def test_planar_code_named_reads_what_it_is_given(tmp_path):
     or as gzip's magic, so named it reads them as records (invalid ones here)."""
     path = tmp_path / "grains.pc"
     path.write_bytes(gzip.compress((EXAMPLES / "polytopes.txt").read_bytes()))
-    table = _table(path, format="planar_code")
+    table = _table(path, input_format="planar_code")
     assert set(table.column("status").to_pylist()) == {"invalid"}
 
 

@@ -70,7 +70,7 @@ def test_voronoi_that_fails_its_checks_exits_1_and_says_why(tmp_path, monkeypatc
     out = tmp_path / "pv.txt"
     result = CliRunner().invoke(cli, ["voronoi", "50", "--seed", "1", "-q", "-o", str(out)])
     assert result.exit_code == 1
-    assert "failed its checks (1 cell(s) with a corner not of three faces)" in result.stderr
+    assert "failed its checks (1 cell with a corner not of three faces)" in result.stderr
     assert len(out.read_text().splitlines()) == 50
 
 
@@ -81,11 +81,11 @@ def test_voronoi_report_problems():
     report.one_sided_faces = 2
     report.bad_corners = 1
     assert report.problems(8.0) == [
-        "1 cell(s) with a corner not of three faces",
-        "2 cell(s) with a face seen from one side only",
+        "1 cell with a corner not of three faces",
+        "2 cells with a face seen from one side only",
         "the cells' volume is 7.9, the box's 8",
     ]
-    assert report.problems(8.0, simple=False)[0].startswith("2 cell(s)")
+    assert report.problems(8.0, simple=False)[0].startswith("2 cells")
     report.one_sided = ["7", "12"]
     assert "seen from one side only (points 7, 12)" in report.problems(8.0)[1]
 
@@ -125,7 +125,7 @@ def test_the_same_grains_from_adjacency_voro_and_loop_text(tmp_path):
     )
     adjacency = tmp_path / "cells.txt"
     from_voro = classify(next(read_dataset(str(voro))))  # sniffed
-    from_loops = classify(next(read_dataset(str(loops), format="loops")))
+    from_loops = classify(next(read_dataset(str(loops), input_format="loops")))
     from grainclass.readers.adjacency import adjacency_lines
 
     adjacency.write_text("".join(adjacency_lines(next(read_dataset(str(voro))))))
@@ -143,9 +143,9 @@ def test_loops_with_a_corner_of_four_faces_and_an_open_surface(tmp_path):
         "open_box\t0 3 2 1;0 1 5 4;1 2 6 5;2 3 7 6;3 0 4 7\n"
         "cube\t0 3 2 1;4 5 6 7;0 1 5 4;1 2 6 5;2 3 7 6;3 0 4 7\n"
     )
-    rows = classify(next(read_dataset(str(path), format="loops"))).to_pylist()
+    rows = classify(next(read_dataset(str(path), input_format="loops"))).to_pylist()
     assert [r["status"] for r in rows] == ["non_simple", "invalid", "ok"]
-    assert "edge 5-4 lies on 1 face(s)" in rows[1]["error"]
+    assert "edge 5-4 lies on 1 face" in rows[1]["error"]
     assert (rows[2]["class"], rows[2]["penalty"]) == ("flag", 18)
 
 
@@ -158,7 +158,7 @@ def test_loops_of_a_pinched_surface_are_not_a_grain(tmp_path):
         "cube\t0 1 2 3;4 7 6 5;0 4 5 1;1 5 6 2;2 6 7 3;3 7 4 0\n"
         "pinched\t0 1 2 3;4 7 0 5;0 4 5 1;1 5 0 2;2 0 7 3;3 7 4 0\n"
     )
-    rows = classify(next(read_dataset(str(path), format="loops"))).to_pylist()
+    rows = classify(next(read_dataset(str(path), input_format="loops"))).to_pylist()
     assert [r["status"] for r in rows] == ["ok", "invalid"]
     assert rows[1]["error"].startswith(f"{path}:2: not a sphere: corners - edges + faces = 1")
 
@@ -204,7 +204,7 @@ def test_unreadable_loops_are_invalid_rows_and_the_others_are_kept(tmp_path):
     assert rows[2]["error"].startswith(f"{voro}:3: cannot read this cell")
     loops = tmp_path / "cells.loops"
     loops.write_text("a\t0 1 2;0 2 3;0 3 1;1 3 2\nb\t0 1 -2;0 2 3\nc\t0 1 2;;0 3 1\n")
-    rows = classify(next(read_dataset(str(loops), format="loops"))).to_pylist()
+    rows = classify(next(read_dataset(str(loops), input_format="loops"))).to_pylist()
     assert [r["status"] for r in rows] == ["ok", "invalid", "invalid"]
     assert rows[1]["error"].endswith(
         "cannot read the loops: expected corner numbers, loops split by ';'"
@@ -352,7 +352,7 @@ def test_key_value_fields_read_alike_in_adjacency_text_and_face_loops(tmp_path):
         None,
     ]
     for path, fmt in ((adjacency, None), (loops, "loops")):
-        rows = classify(next(read_dataset(str(path), format=fmt))).to_pylist()
+        rows = classify(next(read_dataset(str(path), input_format=fmt))).to_pylist()
         assert [r["status"] for r in rows] == ["ok", "invalid", "invalid", "invalid", "ok"], fmt
         errors = [r["error"] and r["error"].split(": ", 1)[1] for r in rows]
         assert errors == expected_errors, fmt

@@ -158,13 +158,14 @@ import importlib, json, pkgutil, sys
 import numba
 import grainclass._kernels as kernels
 from grainclass.classification import classify
+from grainclass.options import ReadOptions
 from grainclass.pipeline import tallies
 from grainclass.readers import read_dataset
 for path in sys.argv[1:]:
     for batch in read_dataset([path]):
         classify(batch)
     for types in (False, True):
-        for _ in tallies([path], types=types):
+        for _ in tallies([path], ReadOptions(types=types)):
             pass
 several = {}
 for module in pkgutil.iter_modules(kernels.__path__):

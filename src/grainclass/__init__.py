@@ -4,8 +4,11 @@ Classifies each grain (a simple 3-polytope, given by its face adjacency) as in L
 Lazar and MacPherson, *Roundness of grains in cellular microstructures*: stacked, flag or
 severely constricted, with truncation trees, roundness, 4-belts, split type and penalty.
 
-The heavy modules (numba, pyarrow, pandas) load on first use, so that importing the package
-and running ``grainclass --help`` stays fast.
+From paths in one call: :func:`read_grains` (per-grain rows as a pandas DataFrame),
+:func:`summary_tables` (the paper's tables), :func:`type_counts`; batch by batch, for streams:
+:func:`read_dataset`, :func:`classify`, :func:`summarize` (docs/library.md). The heavy modules
+(numba, pyarrow, pandas) load on first use, so that importing the package and running
+``grainclass --help`` stays fast.
 """
 
 from importlib import import_module
@@ -13,16 +16,29 @@ from typing import Any
 
 __version__ = "0.1.0"
 
-# Grains per batch: per compiled call, per thread and per Parquet row group.
-DEFAULT_CHUNK_SIZE = 50_000
-
-__all__ = ["GrainBatch", "__version__", "classify", "read_dataset", "summarize"]
+__all__ = [
+    "GrainBatch",
+    "GrainclassError",
+    "ReadOptions",
+    "__version__",
+    "classify",
+    "read_dataset",
+    "read_grains",
+    "summarize",
+    "summary_tables",
+    "type_counts",
+]
 
 _LAZY = {
     "GrainBatch": "grainclass.batch",
+    "GrainclassError": "grainclass.errors",
+    "ReadOptions": "grainclass.options",
     "classify": "grainclass.classification",
     "read_dataset": "grainclass.readers",
+    "read_grains": "grainclass.datasets",
     "summarize": "grainclass.summary",
+    "summary_tables": "grainclass.datasets",
+    "type_counts": "grainclass.datasets",
 }
 
 

@@ -15,6 +15,7 @@ import pyarrow as pa
 
 from grainclass._kernels.columns import _decimal_strings, _strings_from_codes
 from grainclass.batch import offsets_from_counts
+from grainclass.errors import DataError, Remedy
 
 
 def string_array(
@@ -76,7 +77,7 @@ def strings(values: Sequence[str | None]) -> pa.Array:
         lengths = np.fromiter(map(len, encoded), np.int64, len(values))
     offsets = offsets_from_counts(lengths)
     if offsets[-1] > np.iinfo(np.int32).max:
-        raise ValueError("the strings of one batch exceed 2 GB: use a smaller chunk size")
+        raise DataError("the strings of one batch exceed 2 GB", Remedy("chunk_size"))
     return string_array(offsets.astype(np.int32), np.frombuffer(data, np.uint8), valid)
 
 

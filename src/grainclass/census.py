@@ -25,8 +25,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from grainclass import DEFAULT_CHUNK_SIZE
-from grainclass.errors import CensusError
+from grainclass.errors import CensusError, MissingDependencyError, OutputError
+from grainclass.options import DEFAULT_CHUNK_SIZE
 from grainclass.plantri import CHECKS, plantri_count, plantri_version, run_plantri
 from grainclass.vocabulary import TABLES
 
@@ -128,8 +128,13 @@ class Checkpoints:
     directory: Path
 
     def __post_init__(self) -> None:
-        for sub in ("parts", "checks"):
-            (self.directory / sub).mkdir(parents=True, exist_ok=True)
+        try:
+            for sub in ("parts", "checks"):
+                (self.directory / sub).mkdir(parents=True, exist_ok=True)
+            # Tables left by an earlier run are not this run's until it writes them again.
+            self.provenance_path.unlink(missing_ok=True)
+        except OSError as exc:
+            raise OutputError(f"{self.directory}: {exc.strerror or exc}") from None
 
     def part_path(self, part: Part) -> Path:
         return self.directory / "parts" / f"{part.name}.parquet"
@@ -353,8 +358,6 @@ def run_census(
 
     start = time.perf_counter()
     store = Checkpoints(Path(directory))
-    # Tables left by an earlier run are not this run's until it writes them again.
-    store.provenance_path.unlink(missing_ok=True)
     all_parts = census_parts(ns, parts)
     results: dict[Part, PartResult] = {}
     for part in all_parts:
@@ -540,6 +543,17 @@ def write_tables(directory: Path, result: CensusResult) -> None:
             sink.write(frame.to_csv(index=False).encode())
     with atomic_output(str(directory / "provenance.json")) as sink:
         sink.write((json.dumps(result.provenance, indent=2) + "\n").encode())
+
+
+def require_dask() -> None:
+    """Raise :class:`MissingDependencyError` unless Dask's distributed scheduler can be
+    imported (the census extra)."""
+    try:
+        import distributed  # noqa: F401
+    except ImportError as exc:
+        raise MissingDependencyError(
+            f"the census needs Dask ({exc.name} is missing): pip install 'grainclass[census]'"
+        ) from None
 
 
 @contextmanager

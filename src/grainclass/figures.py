@@ -11,8 +11,9 @@ from __future__ import annotations
 import math
 import os
 import re
-from collections.abc import Iterator, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 import pandas as pd
@@ -20,6 +21,9 @@ import pandas as pd
 from grainclass import schema, vocabulary
 from grainclass.errors import DataError
 from grainclass.summary import ROUND_LEVELS, Summary
+
+if TYPE_CHECKING:
+    from grainclass.datasets import FigureRequest
 
 COLUMNS = ["dataset", "series", "x", "y"]
 ROUND_PEAK = "Round (flag peak)"
@@ -177,7 +181,7 @@ def series_percent(summary: Summary, series: str) -> float:
         rows = split[split["n"] == 12] if series == "dodecahedron" else split
         count = int(rows["0"].sum()) if "0" in split.columns else 0
     else:
-        raise ValueError(f"unknown series {series!r}")
+        raise AssertionError(f"no series {series!r}: FigureRequest checks its series")
     return 100.0 * count / total if total else math.nan
 
 
@@ -266,139 +270,11 @@ def round_k_frequencies(datasets: Sequence[Dataset]) -> pd.DataFrame:
     return _frame(rows, COLUMNS)
 
 
-def _edge_error_datasets(
-    paths: Sequence[str],
-    labels: Sequence[str],
-    seed: int,
-    format: str | None,
-    chunk_size: int,
-    triple_edges: tuple[str, str],
-    include_boundary: bool,
-    wrap,
-) -> list[Dataset]:
-    """The first input's grains after 0, 1, 2 and 3 random edge flips per grain (the streams of
-    ``grainclass perturb --flips K --seed SEED``), perturbed as they are read, then the other
-    inputs as they are."""
-    from grainclass.perturb import perturbed_tallies
-    from grainclass.pipeline import is_parquet, tallies
-    from grainclass.summary import merge_tallies
-
-    first = paths[0]
-    if is_parquet(first):
-        raise DataError(
-            f"{first}: edge-errors flips the edges of the first input's grains, which a "
-            "classified Parquet table no longer holds: give the grains themselves (adjacency "
-            "text, planar_code, Evolver, ...)"
-        )
-    by_level: dict[int, list[pd.DataFrame]] = {k: [] for k in EEPG}
-
-    def unflipped() -> Iterator:  # each batch's tally as read, for wrap to count
-        for level_tallies in perturbed_tallies(
-            first, EEPG, seed, format, chunk_size, triple_edges, include_boundary
-        ):
-            for k, part in zip(EEPG, level_tallies, strict=True):
-                by_level[k].append(part.counts)
-            yield level_tallies[0]
-
-    for _ in wrap(unflipped()):
-        pass
-    datasets = [Dataset(labels[0], counts=merge_tallies(by_level[k]), eepg=k) for k in EEPG]
-    for path, label in zip(paths[1:], labels[1:], strict=True):
-        counted = tallies([path], format, chunk_size, triple_edges, False, include_boundary)
-        datasets.append(Dataset(label, counts=merge_tallies([t.counts for t in wrap(counted)])))
-    return datasets
-
-
-TYPED_KINDS = ("penalty", "ranks")  # kinds drawn from type tables (Weinberg vectors)
-
-
-def read_datasets(
-    paths: Sequence[str],
-    labels: Sequence[str],
-    kind: str,
-    format: str | None = None,
-    chunk_size: int | None = None,
-    triple_edges: tuple[str, str] | None = None,
-    include_boundary: bool = False,
-    n_values: Sequence[int] = (),
-    wrap=lambda items: items,
-    seed: int = 0,
-    penalty: str = "P4",
-) -> list[Dataset]:
-    """Each input as a data set of the figure ``kind``: its summary (with round rows for
-    ``n_values``), or, for the kinds drawn from types, its type table; for ``edge-errors``,
-    the first input's counts after 0..3 random edge flips per grain from ``seed``, then the
-    others' counts. Inputs are per-grain Parquet files or anything ``summarize`` reads,
-    classified on the fly; ``wrap`` sees each batch go by (progress). For the penalty figure,
-    ``penalty`` names the candidate drawn (:data:`grainclass.penalties.CANDIDATES`; other than
-    P4, from the belts of every length, l = 4..6)."""
-    from grainclass import DEFAULT_CHUNK_SIZE
-    from grainclass.frequencies import COLUMNS as TYPE_COLUMNS
-    from grainclass.frequencies import type_frequencies
-    from grainclass.pipeline import grain_tables, tallies
-    from grainclass.readers.evolver import DEFAULT_TRIPLE_EDGES
-    from grainclass.summary import summarize
-
-    chunk_size = chunk_size or DEFAULT_CHUNK_SIZE
-    triple_edges = triple_edges or DEFAULT_TRIPLE_EDGES
-    if kind == "edge-errors":
-        return _edge_error_datasets(
-            paths, labels, seed, format, chunk_size, triple_edges, include_boundary, wrap
-        )
-    datasets = []
-    for path, label in zip(paths, labels, strict=True):
-        if kind == "penalty" and penalty != "P4":
-            candidate = _candidate_types(
-                path, label, penalty, format, chunk_size, triple_edges, include_boundary, wrap
-            )
-            datasets.append(candidate)
-        elif kind in TYPED_KINDS:
-            tables = grain_tables([path], TYPE_COLUMNS, format, chunk_size, triple_edges)
-            types = type_frequencies(wrap(tables), include_boundary=include_boundary)
-            datasets.append(Dataset(label, types=types))
-        else:
-            counted = tallies([path], format, chunk_size, triple_edges, False, include_boundary)
-            summary = summarize(wrap(counted), tuple(n_values), include_boundary)
-            datasets.append(Dataset(label, summary=summary))
-    return datasets
-
-
-def _candidate_types(
-    path, label, penalty, format, chunk_size, triple_edges, include_boundary, wrap
-) -> Dataset:
-    """A data set of the flag types of one input with the candidate ``penalty`` in the penalty
-    column and their frequency among its ok grains."""
-    from grainclass.penalties import COLUMNS as PENALTY_COLUMNS
-    from grainclass.penalties import candidates, flag_types
-    from grainclass.pipeline import grain_tables
-
-    longest = 6
-    tables = grain_tables([path], PENALTY_COLUMNS, format, chunk_size, triple_edges, longest)
-    types = flag_types(wrap(tables), include_boundary)
-    frame = pd.DataFrame(
-        {
-            schema.N_FACES: types[schema.N_FACES],
-            schema.CLASS: "flag",
-            schema.PENALTY: candidates(types, longest)[penalty] if len(types) else [],
-            "count": types["count"],
-            "fraction": types["count"] / max(types.attrs["ok_grains"], 1),
-        }
-    )
-    return Dataset(label, types=frame)
-
-
-def figure_data(
-    kind: str,
-    datasets: Sequence[Dataset],
-    n_values: Sequence[int] = (),
-    min_frequency: float = 1e-5,
-    series: Sequence[str] = ("flag",),
-    steps: Sequence[float] | None = None,
-    label: str = "steps",
-) -> pd.DataFrame:
-    """The tidy table of the figure ``kind`` (:data:`grainclass.vocabulary.PLOT_KINDS`) for
-    ``datasets``; ``evolution`` takes them as the time steps of one data set, ``label``, at
-    ``steps`` (else read from their labels, the inputs' names, by :func:`steps_from_names`)."""
+def figure_data(request: FigureRequest, datasets: Sequence[Dataset], label: str) -> pd.DataFrame:
+    """The tidy table of the figure ``request.kind`` for ``datasets``; ``evolution`` takes them
+    as the time steps of one data set, ``label``, at ``request.steps`` (else read from their
+    labels, the inputs' names, by :func:`steps_from_names`)."""
+    kind, n_values, steps = request.kind, request.n_values, request.steps
     if kind == "round":
         return round_levels(datasets, n_values)
     if kind == "classes":
@@ -408,7 +284,7 @@ def figure_data(
     if kind == "round-q":
         return quotient_by_round(datasets)
     if kind == "penalty":
-        return penalties(datasets, min_frequency)
+        return penalties(datasets, request.min_frequency)
     if kind == "ranks":
         return type_ranks(datasets)
     if kind == "edge-errors":
@@ -419,5 +295,5 @@ def figure_data(
             steps = steps_from_names(labels)
         else:
             _require_distinct(labels, steps)
-        return evolution(datasets, steps, series, label)
-    raise ValueError(f"unknown figure {kind!r}")
+        return evolution(datasets, steps, request.series, label)
+    raise AssertionError(f"a FigureRequest of no known kind: {kind!r}")

@@ -4,11 +4,13 @@ from __future__ import annotations
 
 from collections.abc import Iterable
 
+import numpy as np
 import pandas as pd
 import pyarrow as pa
 import pyarrow.compute as pc
 
 from grainclass import schema
+from grainclass.summary import uncut
 
 COLUMNS = [
     schema.STATUS,
@@ -46,12 +48,10 @@ def _count_types(
         keep = pc.and_(keep, pc.equal(grains.column(schema.N_FACES), n_faces))
     if class_name is not None:
         keep = pc.and_(keep, pc.equal(grains.column(schema.CLASS), class_name))
-    excluded = 0
-    if not include_boundary:
-        cut = pc.and_(keep, pc.fill_null(grains.column(schema.BOUNDARY), False))
-        excluded = pc.sum(cut).as_py() or 0
-        keep = pc.and_(keep, pc.invert(cut))
-    kept = grains.filter(keep)
+    keep = np.asarray(pc.fill_null(keep, False))
+    counted = uncut(grains, include_boundary)
+    excluded = 0 if counted is None else int(np.count_nonzero(keep & ~counted))
+    kept = grains.filter(pa.array(keep if counted is None else keep & counted))
     frame = kept.select(COLUMNS).to_pandas()
     if belt_length != 4:
         flag = frame[schema.SPLIT_K].notna()

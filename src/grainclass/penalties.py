@@ -27,6 +27,9 @@ import pyarrow as pa
 import pyarrow.compute as pc
 
 from grainclass import schema
+from grainclass.errors import DataError, Remedy
+from grainclass.summary import uncut
+from grainclass.vocabulary import PENALTIES
 
 COLUMNS = [
     schema.STATUS,
@@ -37,7 +40,6 @@ COLUMNS = [
     schema.BELT_PENALTIES,
     schema.BOUNDARY,
 ]
-CANDIDATES = ("P4", "P4..L", "P4/sym", "P4..L/sym", "sym", "(1+P4)*sym", "(1+P4..L)*sym")
 
 
 def spearman(x: pd.Series, y: pd.Series) -> float:
@@ -60,13 +62,14 @@ def flag_types(
     ok_grains = 0
     for table in tables:
         ok = pc.equal(table.column(schema.STATUS), "ok")
-        if not include_boundary:
-            ok = pc.and_(ok, pc.invert(pc.fill_null(table.column(schema.BOUNDARY), False)))
+        counted = uncut(table, include_boundary)
+        if counted is not None:
+            ok = pc.and_(ok, pa.array(counted))
         ok_grains += pc.sum(ok).as_py() or 0
         keep = pc.and_(ok, pc.equal(table.column(schema.CLASS), "flag"))
         kept = table.select(COLUMNS).filter(keep)
         if pc.any(pc.is_null(kept.column(schema.BELT_PENALTIES))).as_py():
-            raise ValueError("flag grains without belt penalties: classify with --belts")
+            raise DataError("flag grains without belt penalties", Remedy("belt_length", 6, True))
         frame = kept.select([schema.WEINBERG, schema.N_FACES, schema.SYMMETRY]).to_pandas()
         penalties = kept.column(schema.BELT_PENALTIES).to_pylist()
         width = max((len(p) for p in penalties), default=0)
@@ -86,7 +89,7 @@ def flag_types(
 
 
 def candidates(types: pd.DataFrame, longest: int) -> pd.DataFrame:
-    """The candidate penalties (:data:`CANDIDATES`) of each type, l up to ``longest``."""
+    """The candidate penalties (:data:`PENALTIES`) of each type, l up to ``longest``."""
     sym = types[schema.SYMMETRY].astype(float)
     p4 = types["P4"].astype(float)
     total = sum(types[f"P{length}"].astype(float) for length in range(4, longest + 1))
@@ -112,14 +115,17 @@ def penalty_correlations(
     """Spearman's rho per n between the flag types' counts and each candidate penalty.
 
     Returns a frame with columns ``n``, ``types``, ``grains`` and one per candidate (of
-    :data:`CANDIDATES`, summed over l = 4..``longest``), a row per n that has at least three
+    :data:`PENALTIES`, summed over l = 4..``longest``), a row per n that has at least three
     flag types (or per n of ``n_values``).
     """
     types = flag_types(grains, include_boundary)
     lengths = [int(c[1:]) for c in types.columns if c.startswith("P") and c[1:].isdigit()]
     if len(types) and max(lengths, default=0) < longest:
-        raise ValueError(f"belt penalties up to l = {longest} are needed: classify with --belts")
-    values = candidates(types, longest) if len(types) else pd.DataFrame(columns=CANDIDATES)
+        raise DataError(
+            f"flag grains without belt penalties up to l = {longest}",
+            Remedy("belt_length", longest, reclassify=True),
+        )
+    values = candidates(types, longest) if len(types) else pd.DataFrame(columns=PENALTIES)
     rows = []
     wanted = sorted(set(n_values)) if n_values else sorted(types[schema.N_FACES].unique())
     for n in wanted:
@@ -128,7 +134,7 @@ def penalty_correlations(
         if not n_values and len(count) < 3:
             continue
         row = {"n": int(n), "types": int(at_n.sum()), "grains": int(count.sum())}
-        for name in CANDIDATES:
+        for name in PENALTIES:
             row[name] = spearman(count, values.loc[at_n, name])
         rows.append(row)
-    return pd.DataFrame(rows, columns=["n", "types", "grains", *CANDIDATES])
+    return pd.DataFrame(rows, columns=["n", "types", "grains", *PENALTIES])

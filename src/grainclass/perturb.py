@@ -21,16 +21,20 @@ import os
 import secrets
 from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 
-from grainclass import DEFAULT_CHUNK_SIZE
 from grainclass._kernels import codes
 from grainclass.batch import GrainBatch, offsets_from_counts
+from grainclass.errors import OptionError
 from grainclass.parallel import run_ranges
-from grainclass.readers.evolver import DEFAULT_TRIPLE_EDGES
+
+if TYPE_CHECKING:
+    from grainclass.options import ReadOptions
 
 MAX_SEED = 2**64 - 1
+MAX_FLIPS = 2**63 - 1  # a count the kernels hold in an int64
 
 
 def new_seed() -> int:
@@ -43,7 +47,7 @@ def seed_key(seed: int) -> np.uint64:
     from grainclass._kernels.flips import mix
 
     if not 0 <= seed <= MAX_SEED:
-        raise ValueError(f"a seed is an integer from 0 to 2^64 - 1, not {seed}")
+        raise OptionError("seed", f"a seed is an integer from 0 to 2^64 - 1, not {seed}")
     with np.errstate(over="ignore"):  # uint64 arithmetic wraps on purpose (seen without the JIT)
         return np.uint64(mix(np.uint64(seed)))  # a numpy scalar: numba types it as uint64
 
@@ -161,8 +165,8 @@ def perturb(batch: GrainBatch, flips: int, seed: int, first_position: int = 0) -
     """
     from grainclass._kernels.flips import _flip_batch
 
-    if flips < 0:
-        raise ValueError(f"flips must be 0 or more, not {flips}")
+    if not 0 <= flips <= MAX_FLIPS:
+        raise OptionError("flips", f"flips per grain go from 0 to 2^63 - 1, not {flips}")
     checked = check(batch)
     g = len(batch)
     done = np.zeros(g, np.int64)
@@ -387,9 +391,7 @@ def perturbed_batches(
     paths: Sequence[str],
     flips: int | None,
     seed: int,
-    format: str | None = None,
-    chunk_size: int = DEFAULT_CHUNK_SIZE,
-    triple_edges: tuple[str, str] = DEFAULT_TRIPLE_EDGES,
+    options: ReadOptions,
     write: str | None = None,
 ) -> Iterator[Written]:
     """:func:`perturb` (``flips`` per grain) or, when ``flips`` is None, :func:`all_flips` of
@@ -402,7 +404,7 @@ def perturbed_batches(
     from grainclass.readers import read_dataset
     from grainclass.writers import unwritable, write_batch
 
-    batches = _positioned(read_dataset(paths, format, chunk_size, triple_edges))
+    batches = _positioned(read_dataset(paths, options))
 
     def work(item: tuple[int, GrainBatch]) -> Written:
         position, batch = item
@@ -416,13 +418,7 @@ def perturbed_batches(
 
 
 def perturbed_tallies(
-    path: str,
-    levels: Sequence[int],
-    seed: int,
-    format: str | None = None,
-    chunk_size: int = DEFAULT_CHUNK_SIZE,
-    triple_edges: tuple[str, str] = DEFAULT_TRIPLE_EDGES,
-    include_boundary: bool = False,
+    path: str, levels: Sequence[int], seed: int, options: ReadOptions
 ) -> Iterator[list]:
     """For every batch of ``path``, a :class:`grainclass.summary.Tally` of its grains after
     each number of flips of ``levels`` (0: as read), with the streams of
@@ -433,12 +429,13 @@ def perturbed_tallies(
     from grainclass.readers import read_dataset
     from grainclass.summary import tally_batch
 
-    batches = _positioned(read_dataset([path], format, chunk_size, triple_edges))
+    batches = _positioned(read_dataset([path], options))
 
     def work(item: tuple[int, GrainBatch]) -> list:
         position, batch = item
         return [
-            tally_batch(perturb(batch, k, seed, position).batch, include_boundary) for k in levels
+            tally_batch(perturb(batch, k, seed, position).batch, options.include_boundary)
+            for k in levels
         ]
 
     yield from map_ordered(work, prefetch(batches))

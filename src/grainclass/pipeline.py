@@ -6,6 +6,7 @@ classifies: the compiled kernels release the GIL, so the two overlap on separate
 
 from __future__ import annotations
 
+import dataclasses
 import queue
 import threading
 from collections.abc import Iterable, Iterator, Sequence
@@ -13,11 +14,11 @@ from typing import TYPE_CHECKING, TypeVar
 
 import pyarrow as pa
 
-from grainclass import DEFAULT_CHUNK_SIZE
 from grainclass.classification import classify
+from grainclass.errors import DataError, Remedy
+from grainclass.options import SHORTEST_BELT, ReadOptions
 from grainclass.parallel import map_ordered
-from grainclass.readers import read_dataset, read_once
-from grainclass.readers.evolver import DEFAULT_TRIPLE_EDGES
+from grainclass.readers import expand_paths, read_dataset, read_once
 
 if TYPE_CHECKING:
     from grainclass.summary import Tally
@@ -68,22 +69,18 @@ def prefetch(items: Iterable[T], depth: int = 2) -> Iterator[T]:
         stop.set()
 
 
-def classified_tables(
-    paths: Sequence[str],
-    format: str | None = None,
-    chunk_size: int = DEFAULT_CHUNK_SIZE,
-    triple_edges: tuple[str, str] = DEFAULT_TRIPLE_EDGES,
-    types: bool = True,
-    belts: int = 0,
-) -> Iterator[pa.Table]:
-    """Per-grain tables for every batch of the inputs, in input order, with belts of lengths
-    3..``belts`` if it is not 0."""
+def classified_tables(paths: Sequence[str], options: ReadOptions) -> Iterator[pa.Table]:
+    """Per-grain tables for every batch of the inputs, in input order: with the Weinberg vectors
+    if ``options.types``, with belts of lengths 3..``options.belt_length`` if it is set."""
     from grainclass.parallel import get_jobs
     from grainclass.warmup import compiling_from_both_ends
 
-    with compiling_from_both_ends(get_jobs(), types) as watch:
-        batches = prefetch(watch(read_dataset(paths, format, chunk_size, triple_edges)))
-        yield from map_ordered(lambda batch: classify(batch, types=types, belts=belts), batches)
+    with compiling_from_both_ends(get_jobs(), options.types) as watch:
+        batches = prefetch(watch(read_dataset(paths, options)))
+        yield from map_ordered(
+            lambda batch: classify(batch, types=options.types, belts=options.longest_belt),
+            batches,
+        )
 
 
 def is_parquet(path: str) -> bool:
@@ -99,29 +96,42 @@ def is_parquet(path: str) -> bool:
 
 
 def grain_tables(
-    paths: Sequence[str],
-    columns: list[str],
-    format: str | None = None,
-    chunk_size: int = DEFAULT_CHUNK_SIZE,
-    triple_edges: tuple[str, str] = DEFAULT_TRIPLE_EDGES,
-    belts: int = 0,
+    paths: Sequence[str], columns: list[str], options: ReadOptions
 ) -> Iterator[pa.Table]:
-    """Per-grain tables with the Weinberg vectors (``columns`` include status and weinberg):
-    from classified Parquet files, which must hold them, or, for any other input, classified
-    now. With ``belts``, belts of lengths 3..``belts`` too, which Parquet files must hold."""
+    """Per-grain tables of ``columns`` with the Weinberg vectors (``columns`` include status and
+    weinberg): from classified Parquet files, which must hold them, or, for any other input,
+    classified now. With ``options.belt_length``, belts of lengths 3..L too, which Parquet
+    files must hold."""
     from grainclass.parquet import iter_grain_tables
 
-    for path in paths:
-        if is_parquet(path):
-            for table in iter_grain_tables(path, columns):
-                _require_types(path, table)
-                if belts:
-                    _require_belts(path, table, belts)
+    typed = dataclasses.replace(options, types=True)
+    for parquet, group in input_runs(paths):
+        if parquet:
+            for table in iter_grain_tables(group[0], columns):
+                _require_types(group[0], table)
+                if options.belt_length:
+                    _require_belts(group[0], table, options.belt_length)
                 yield table
         else:
-            tables = classified_tables([path], format, chunk_size, triple_edges, belts=belts)
-            for table in tables:
+            for table in classified_tables(group, typed):
                 yield table.select(columns)
+
+
+def input_runs(paths: Sequence[str]) -> Iterator[tuple[bool, list[str]]]:
+    """The inputs (a folder stands for its Parquet or ``*.fe`` files) as runs: each
+    per-grain Parquet table alone ``(True, [path])``, consecutive inputs of grains together
+    ``(False, paths)``, to be read as one stream."""
+    raw: list[str] = []
+    for path in expand_paths(paths):
+        if is_parquet(path):
+            if raw:
+                yield False, raw
+                raw = []
+            yield True, [path]
+        else:
+            raw.append(path)
+    if raw:
+        yield False, raw
 
 
 def _require_belts(path: str, table: pa.Table, longest: int) -> None:
@@ -129,7 +139,6 @@ def _require_belts(path: str, table: pa.Table, longest: int) -> None:
     import pyarrow.compute as pc
 
     from grainclass import schema
-    from grainclass.errors import InputError
 
     ok = table.filter(pc.equal(table.column(schema.STATUS), "ok"))
     if not len(ok):
@@ -138,40 +147,29 @@ def _require_belts(path: str, table: pa.Table, longest: int) -> None:
     lengths = pc.list_value_length(ok.column(present[0]))
     shortest = pc.min(pc.fill_null(lengths, 0)).as_py()
     if shortest < longest - 2:
-        raise InputError(
-            path,
-            f"ok grains without belts of length up to {longest}: classify the input again "
-            f"with --belts --belt-lengths {max(longest, 6)}",
+        raise DataError(
+            f"{path}: ok grains without their belts of length up to {longest}",
+            Remedy("belt_length", longest, reclassify=True),
         )
 
 
 def _require_types(path: str, table: pa.Table) -> None:
-    """Refuse a table whose ok grains lack their Weinberg vectors (classified with
-    ``--no-types``): counted, they would all vanish from the types."""
-    from grainclass.errors import InputError
+    """Refuse a table whose ok grains lack their Weinberg vectors (classified without types):
+    counted, they would all vanish from the types."""
     from grainclass.summary import untyped_grains
 
     if untyped_grains(table):  # this row group's: the rest of the file is not read yet
-        raise InputError(
-            path,
-            "ok grains without a Weinberg vector (classified with --no-types): "
-            "classify the input again without --no-types",
+        raise DataError(
+            f"{path}: ok grains without a Weinberg vector (classified without types)",
+            Remedy("types", True, reclassify=True),
         )
 
 
-def tallies(
-    paths: Sequence[str],
-    format: str | None = None,
-    chunk_size: int = DEFAULT_CHUNK_SIZE,
-    triple_edges: tuple[str, str] = DEFAULT_TRIPLE_EDGES,
-    types: bool = False,
-    include_boundary: bool = False,
-    belt_length: int = 4,
-) -> Iterator[Tally]:
+def tallies(paths: Sequence[str], options: ReadOptions) -> Iterator[Tally]:
     """What ``summarize`` counts, batch by batch: classified Parquet files are tallied from their
     rows; other inputs are classified on the fly for counting only (planar_code straight from
-    its bytes), with the Weinberg vectors if ``types`` asks for them, never into per-grain
-    tables. With a ``belt_length`` other than 4, flag grains are counted by the split type of
+    its bytes), with the Weinberg vectors if ``options.types`` asks for them, never into
+    per-grain tables. With a ``belt_length``, flag grains are counted by the split type of
     their l-belts (Parquet files must hold them)."""
     from grainclass.parallel import get_jobs
     from grainclass.parquet import iter_grain_tables
@@ -179,20 +177,22 @@ def tallies(
     from grainclass.summary import COLUMNS, tally_batch, tally_table
     from grainclass.warmup import compiling_from_both_ends
 
-    by_length = belt_length != 4
-    for path in paths:
-        if is_parquet(path):
-            for table in iter_grain_tables(path, [*COLUMNS, SPLITS] if by_length else COLUMNS):
+    length = options.split_length
+    by_length = length != SHORTEST_BELT
+    for parquet, group in input_runs(paths):
+        if parquet:
+            columns = [*COLUMNS, SPLITS] if by_length else COLUMNS
+            for table in iter_grain_tables(group[0], columns):
                 if by_length:
-                    _require_belts(path, table, belt_length)
-                yield tally_table(table, include_boundary, belt_length)
+                    _require_belts(group[0], table, length)
+                yield tally_table(table, options.include_boundary, length)
             continue
         # The Weinberg walks and the belts need the CSR lists; counting alone reads planar_code
         # as bytes.
-        raw = not types and not by_length
-        batches = read_dataset([path], format, chunk_size, triple_edges, raw_planar_code=raw)
-        with compiling_from_both_ends(get_jobs(), types, counting=not types) as watch:
+        raw = not options.types and not by_length
+        batches = read_dataset(group, options, raw_planar_code=raw)
+        with compiling_from_both_ends(get_jobs(), options.types, counting=not options.types) as w:
             yield from map_ordered(
-                lambda batch: tally_batch(batch, include_boundary, types, belt_length),
-                prefetch(watch(batches)),
+                lambda batch: tally_batch(batch, options.include_boundary, options.types, length),
+                prefetch(w(batches)),
             )

@@ -17,7 +17,7 @@ import numpy as np
 import pandas as pd
 
 from grainclass import vocabulary
-from grainclass.errors import MissingDependencyError
+from grainclass.errors import MissingDependencyError, OptionError
 from grainclass.figures import ROUND_PEAK
 
 if TYPE_CHECKING:
@@ -36,12 +36,12 @@ def figure_format(path: str) -> str:
 
     Raises
     ------
-    ValueError
+    OptionError
         For any other extension.
     """
     extension = os.path.splitext(path)[1].lower().lstrip(".")
     if extension not in FORMATS:
-        raise ValueError(f"{path}: a figure is .png, .svg or .pdf")
+        raise OptionError("output", f"{path!r}: a figure is a .png, .svg or .pdf file")
     return extension
 
 

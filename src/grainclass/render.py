@@ -10,16 +10,6 @@ import pandas as pd
 
 from grainclass.summary import Summary
 
-EXTENSIONS = {
-    ".txt": "text",
-    ".csv": "csv",
-    ".md": "markdown",
-    ".markdown": "markdown",
-    ".tex": "latex",
-    ".latex": "latex",
-    ".json": "json",
-    ".parquet": "parquet",
-}
 TITLES = {
     "classes": "Grains by number of faces n and class (the paper's Tables II, V, R, E)",
     "round": "Percent of ok grains in round<=k and in the sc family (the paper's round table)",

@@ -17,6 +17,7 @@ from grainclass._kernels import codes as kernel_codes
 
 if TYPE_CHECKING:
     from grainclass.batch import GrainBatch
+    from grainclass.classification import GrainCodes
     from grainclass.readers.planar_code import PlanarCodeRecords
 
 KEYS = [
@@ -68,55 +69,58 @@ class Tally:
         return self.grains
 
 
-def tally(grains: pa.Table) -> pd.DataFrame:
-    """Grains counted by (status, n_faces, family, class, round_k, split_k), with their triangles.
-
-    Every table of the paper is a sum over these groups, so a stream of batches can be summarized
-    in bounded memory: tally each batch, then :func:`merge_tallies`.
-    """
-    q = grains.column(schema.ISOPERIMETRIC)
-    table = (
-        grains.select([*KEYS, schema.N_TRIANGLES])
-        .append_column("q", q)
-        .append_column("q2", pc.multiply(q, q))
-    )
-    grouped = table.group_by(KEYS, use_threads=False)
-    counts = grouped.aggregate(
-        [
-            (schema.N_TRIANGLES, "sum"),
-            ([], "count_all"),
-            ("q", "count"),
-            ("q", "sum"),
-            ("q2", "sum"),
-        ]
-    ).to_pandas()
-    names = {
-        f"{schema.N_TRIANGLES}_sum": TRIANGLES,
-        "count_all": COUNT,
-        "q_count": Q_COUNT,
-        "q_sum": Q_SUM,
-        "q2_sum": Q_SQUARES,
-    }
-    return counts.rename(columns=names)
-
-
 def tally_table(grains: pa.Table, include_boundary: bool = False, belt_length: int = 4) -> Tally:
     """A :class:`Tally` of per-grain rows (as ``grainclass classify`` writes them); with a
     ``belt_length`` other than 4, flag grains by the split type of their l-belts (from the
-    ``splits`` column)."""
-    excluded = 0
+    ``splits`` column). The rows are read back into the codes a raw batch is classified into,
+    and counted as a raw batch is (:func:`tally_batch`)."""
+    from grainclass.classification import GrainCodes
+
+    split = _codes(grains.column(schema.SPLIT_K))
     if belt_length != 4:
-        split = pc.list_element(grains.column(schema.SPLITS).combine_chunks(), belt_length - 3)
-        flag = pc.is_valid(grains.column(schema.SPLIT_K))
-        split = pc.if_else(flag, split.cast(pa.int32()), pa.scalar(None, pa.int32()))
-        grains = grains.set_column(grains.schema.get_field_index(schema.SPLIT_K), schema.SPLIT_K,
-                                   split)  # fmt: skip
-    if not include_boundary and schema.BOUNDARY in grains.column_names:
+        from_belts = pc.list_element(grains.column(schema.SPLITS).combine_chunks(), belt_length - 3)
+        split = np.where(split >= 0, _codes(from_belts), -1)
+    codes = GrainCodes(
+        n_faces=_codes(grains.column(schema.N_FACES)),
+        status=_word_codes(grains.column(schema.STATUS), vocabulary.STATUSES),
+        family=_word_codes(grains.column(schema.FAMILY), vocabulary.FAMILIES),
+        truncations=np.full(len(grains), -1, np.int64),  # counted by class, not by number
+        class_code=_word_codes(grains.column(schema.CLASS), vocabulary.CLASSES),
+        round_k=_codes(grains.column(schema.ROUND_K)),
+        split_k=split,
+        triangles=_codes(grains.column(schema.N_TRIANGLES), missing=0),
+    )
+    q = grains.column(schema.ISOPERIMETRIC).to_numpy(zero_copy_only=False).astype(np.float64)
+    keep = uncut(grains, include_boundary)
+    kept = grains if keep is None else grains.filter(pa.array(keep))
+    return _tally_codes(
+        codes, q, keep, type_hashes(kept.column(schema.WEINBERG)), untyped_grains(kept) == 0
+    )
+
+
+def _codes(column: pa.ChunkedArray | pa.Array, missing: int = -1) -> np.ndarray:
+    """An integer column as int64 codes, ``missing`` where null."""
+    return pc.fill_null(column, missing).to_numpy(zero_copy_only=False).astype(np.int64)
+
+
+def _word_codes(column: pa.ChunkedArray | pa.Array, words: tuple[str, ...]) -> np.ndarray:
+    """A column of words as their index in ``words``, -1 where null."""
+    return _codes(pc.index_in(column, value_set=pa.array(words)))
+
+
+def uncut(grains: pa.Table | GrainBatch, include_boundary: bool) -> np.ndarray | None:
+    """Which grains count, as the boundary rule has it: all of them with ``include_boundary``
+    or when none is known to be cut, else those not cut by a sample boundary (a grain whose
+    boundary is unknown counts). None for all; else a boolean mask."""
+    if include_boundary:
+        return None
+    if isinstance(grains, pa.Table):
+        if schema.BOUNDARY not in grains.column_names:
+            return None
         cut = pc.fill_null(grains.column(schema.BOUNDARY), False)
-        excluded = pc.sum(cut).as_py() or 0
-        grains = grains.filter(pc.invert(cut))
-    hashes = type_hashes(grains.column(schema.WEINBERG))
-    return Tally(tally(grains), len(grains), hashes, excluded, untyped_grains(grains) == 0)
+        return None if not pc.any(cut).as_py() else ~cut.to_numpy(zero_copy_only=False)
+    boundary = grains.boundary
+    return None if boundary is None else boundary != 1
 
 
 def untyped_grains(grains: pa.Table) -> int:
@@ -182,14 +186,25 @@ def tally_batch(
         profile = belt_profile(batch, codes.status, belt_length)
         split = np.where(codes.split_k >= 0, profile[:, belt_length - 3, 1], -1)
         codes = dataclasses.replace(codes, split_k=split)
-    boundary = batch.boundary
-    keep = None
-    if boundary is not None and not include_boundary:
-        keep = boundary != 1
-    ok = codes.status == kernel_codes.OK
+    keep = uncut(batch, include_boundary)
     hashes = np.zeros(0, np.uint64)
     if code_hashes is not None:  # the distinct types of the kept ok grains
+        ok = codes.status == kernel_codes.OK
         hashes = np.unique(code_hashes[ok if keep is None else ok & keep])
+    return _tally_codes(codes, batch.isoperimetric, keep, hashes, typed=types)
+
+
+def _tally_codes(
+    codes: GrainCodes,
+    q: np.ndarray | None,
+    keep: np.ndarray | None,
+    hashes: np.ndarray,
+    typed: bool,
+) -> Tally:
+    """A :class:`Tally` of grains given by their codes: those of ``keep`` (None: all) grouped
+    by (status, family, class, n_faces, round_k, split_k), with their triangles and the count,
+    sum and sum of squares of their isoperimetric quotients ``q`` (NaN or None: none) where ok.
+    """
     keys = [
         codes.status,
         codes.family,
@@ -199,9 +214,9 @@ def tally_batch(
         codes.split_k,
     ]
     triangles = codes.triangles
-    q = batch.isoperimetric
     if q is not None:
-        q = np.where(ok, q, np.nan)
+        q = np.where(codes.status == kernel_codes.OK, q, np.nan)
+    grains = len(codes.status)
     if keep is not None:
         keys = [column[keep] for column in keys]
         triangles = triangles[keep]
@@ -227,7 +242,7 @@ def tally_batch(
     counts = _counts(
         *rows, sums(triangles).astype(np.int64), np.bincount(group, minlength=groups), q_sums
     )
-    return Tally(counts, kept, hashes, boundary_excluded=len(batch) - kept, typed=types)
+    return Tally(counts, kept, hashes, boundary_excluded=grains - kept, typed=typed)
 
 
 def _tally_records(batch: PlanarCodeRecords) -> Tally:
@@ -304,7 +319,7 @@ def _distinct(hashes: list[np.ndarray]) -> int:
 def merge_tallies(tallies: list[pd.DataFrame]) -> pd.DataFrame:
     """One tally from several (same groups added up)."""
     if not tallies:
-        return tally(pa.Table.from_pylist([], schema=schema.GRAIN_SCHEMA))
+        return _counts(*[np.zeros(0, np.int64)] * 8)
     both = pd.concat(tallies, ignore_index=True)
     return both.groupby(KEYS, dropna=False, as_index=False)[SUMS].sum(min_count=0)
 

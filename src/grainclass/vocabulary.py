@@ -37,5 +37,17 @@ PLOT_KINDS = (
     "edge-errors",
 )
 
+# Candidate penalties of flag types (``grainclass penalties``, ``plot penalty --penalty``).
+PENALTIES = ("P4", "P4..L", "P4/sym", "P4..L/sym", "sym", "(1+P4)*sym", "(1+P4..L)*sym")
+
 # Named grains that `grainclass plot evolution --series` follows beside the classes.
 NAMED_SERIES = ("tetrahedron", "cube", "dodecahedron", "0:m", "triangles")
+
+
+def plural(count: int, word: str, words: str | None = None) -> str:
+    """``count`` and ``word``, in the plural (``words``, else ``word + "s"``) unless one.
+
+    >>> plural(1, "grain"), plural(2_000, "grain"), plural(3, "body", "bodies")
+    ('1 grain', '2000 grains', '3 bodies')
+    """
+    return f"{count} {word if count == 1 else words or word + 's'}"

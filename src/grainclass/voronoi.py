@@ -23,9 +23,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from grainclass import DEFAULT_CHUNK_SIZE
 from grainclass.batch import GrainBatch, offsets_from_counts
-from grainclass.errors import GrainclassError
+from grainclass.errors import DataError, OptionError, TessellationError
+from grainclass.options import DEFAULT_CHUNK_SIZE
+from grainclass.vocabulary import plural
 
 POINTS_PER_BLOCK = 5.0  # points per Voro++ search block, as Voro++'s documentation advises
 # Flags per cell from the engine (grainclass/_voro.cpp).
@@ -103,13 +104,13 @@ class VoronoiReport:
         have a cell."""
         found = []
         if not weighted and self.no_cell:
-            found.append(f"{len(self.no_cell)} point(s) without a cell")
+            found.append(f"{plural(len(self.no_cell), 'point')} without a cell")
         if simple and self.bad_corners:
-            found.append(f"{self.bad_corners} cell(s) with a corner not of three faces")
+            found.append(f"{plural(self.bad_corners, 'cell')} with a corner not of three faces")
         if self.one_sided_faces:
             ids = ", ".join(self.one_sided[:10]) + (" ..." if len(self.one_sided) > 10 else "")
             found.append(
-                f"{self.one_sided_faces} cell(s) with a face seen from one side only"
+                f"{plural(self.one_sided_faces, 'cell')} with a face seen from one side only"
                 + (f" (points {ids})" if ids else "")
             )
         if abs(self.volume - box_volume) > 1e-9 * box_volume:
@@ -201,35 +202,35 @@ def block_order(xyz: np.ndarray, box: Box) -> np.ndarray:
 
 
 def check_points(points: Points, box: Box) -> None:
-    """Refuse what Voro++ cannot tessellate, naming the point(s) and where they are: a point
+    """Refuse what Voro++ cannot tessellate, naming the points and where they are: a point
     outside a walled side of the box, a negative radius, and two points at one place or
     closer than Voro++ can separate."""
     xyz = points.xyz
     if not len(xyz):
-        raise GrainclassError(f"{points.source}: no points in the box")
+        raise DataError(f"{points.source}: no points in the box")
     if not np.isfinite(xyz).all():
         i = int(np.flatnonzero(~np.isfinite(xyz).all(axis=1))[0])
-        raise GrainclassError(f"{points.where(i)}: point {points.ids[i]} is not a finite point")
+        raise DataError(f"{points.where(i)}: point {points.ids[i]} is not a finite point")
     walled = ~np.asarray(box.periodic)
     outside = ((xyz < box.low) | (xyz > box.high)) & walled
     if outside.any():
         i = int(np.flatnonzero(outside.any(axis=1))[0])
-        raise GrainclassError(
+        raise DataError(
             f"{points.where(i)}: point {points.ids[i]} at ({', '.join(f'{v:g}' for v in xyz[i])})"
             f" lies outside the box {box.describe()}"
         )
     if points.radii is not None and (points.radii < 0).any():
         i = int(np.flatnonzero(points.radii < 0)[0])
-        raise GrainclassError(
+        raise DataError(
             f"{points.where(i)}: point {points.ids[i]} has a negative radius ({points.radii[i]:g})"
         )
     if box.tilt is not None and not all(box.periodic):
-        raise GrainclassError(f"a tilted box must be periodic on every side: {box.describe()}")
+        raise DataError(f"a tilted box must be periodic on every side: {box.describe()}")
     close = _close_pair(box.fractions(xyz), box.matrix * _scale(box), box.periodic)
     if close is not None:
         i, j = sorted(close)
         same = np.array_equal(xyz[i], xyz[j])
-        raise GrainclassError(
+        raise DataError(
             f"{points.where(j)}: point {points.ids[j]} "
             + ("is at the same place as" if same else "is closer than Voro++ can separate to")
             + f" point {points.ids[i]} ({points.where(i)})"
@@ -353,7 +354,7 @@ def _batch(
         cells, face_counts = cells[has_cell], face_counts[has_cell]
     flags = raw["flags"][has_cell]
     if (flags & OPEN).any():
-        raise GrainclassError("Voro++ returned cells whose faces do not close up; report this")
+        raise TessellationError("Voro++ returned cells whose faces do not close up; report this")
     volume = raw["volume"][has_cell] / scale**3
     boundary = (flags & WALL) != 0
     report.cells += len(cells)
@@ -374,3 +375,52 @@ def _batch(
         area=raw["area"][has_cell] / scale**2,
         boundary=boundary.astype(np.int8),
     )
+
+
+def random_seeds_box(box: Box | None, periodic: tuple[bool, bool, bool] | None) -> Box:
+    """The box of random seeds: the periodic cube ``box`` (default: the unit cube).
+
+    Raises
+    ------
+    OptionError
+        For a box that is not a cube from the origin, or one that is not periodic.
+    """
+    if periodic is not None and not all(periodic):
+        raise OptionError("periodic", "random seeds fill a periodic box")
+    if box is None:
+        return Box.cube(1.0)
+    if set(box.low) != {0.0} or len(set(box.high)) != 1 or box.tilt is not None:
+        raise OptionError("box", "random seeds fill a cube from the origin: give its side")
+    return Box.cube(box.high[0])
+
+
+def points_box(points: Points, box: Box | None, periodic: tuple[bool, bool, bool] | None) -> Box:
+    """The box of a tessellation of ``points``: ``box`` if given, else the one their file
+    gives (LAMMPS, extended XYZ), else the unit cube; periodic on the axes of ``periodic`` if
+    given, else as the file says, else on every axis."""
+    if box is None:
+        box = points.box if points.box is not None else Box.cube(1.0)
+    if periodic is None:
+        periodic = points.box.periodic if points.box is not None else (True, True, True)
+    return Box(box.low, box.high, tuple(periodic), box.tilt)
+
+
+def write_cells(batches: Iterator[GrainBatch], output: str) -> None:
+    """The cells to ``output``, whole or not at all: classified into a per-grain Parquet table
+    (``*.parquet``), else as adjacency text with ``volume=`` and ``area=`` per grain."""
+    from grainclass.atomic import atomic_output
+    from grainclass.writers import adjacency_text
+
+    if output.lower().endswith(".parquet"):
+        from grainclass.classification import classify
+        from grainclass.parquet import GrainTableWriter
+
+        with GrainTableWriter(output) as writer:
+            for batch in batches:
+                writer.write(classify(batch))
+        return
+    with atomic_output(output) as sink:
+        for batch in batches:
+            view = memoryview(adjacency_text(batch))
+            while view:
+                view = view[sink.write(view) :]

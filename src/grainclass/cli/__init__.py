@@ -17,7 +17,7 @@ from contextlib import suppress
 import click
 
 from grainclass import __version__
-from grainclass.cli import signals
+from grainclass.cli import errors, output, signals
 from grainclass.cli.census import census_cmd
 from grainclass.cli.classify import classify_cmd
 from grainclass.cli.exit_codes import GRAINS, ExitCode
@@ -31,7 +31,9 @@ from grainclass.cli.voronoi import voronoi_cmd
 __all__ = ["cli", "main"]
 
 
-@click.group(epilog=GRAINS, context_settings={"help_option_names": ["-h", "--help"]})
+@click.group(
+    cls=errors.Group, epilog=GRAINS, context_settings={"help_option_names": ["-h", "--help"]}
+)
 @click.version_option(__version__, prog_name="grainclass")
 def cli() -> None:
     """Classify the grains of 3D cellular microstructures by combinatorial type.
@@ -81,6 +83,8 @@ def main() -> None:
     except click.ClickException as exc:
         exc.show()
         code = exc.exit_code
+    except BrokenPipeError:
+        code = output.quiet_broken_pipe()
     except MemoryError:
         # A grain's own needs are refused grain by grain (its row says so); this is the run's.
         click.echo("grainclass: error: out of memory (a smaller --chunk-size may do)", err=True)

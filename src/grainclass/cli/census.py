@@ -2,9 +2,12 @@
 
 from __future__ import annotations
 
+import sys
+
 import click
 
 from grainclass.cli import exit_codes, options, startup
+from grainclass.options import DEFAULT_CHUNK_SIZE, MAX_CHUNK_SIZE
 
 
 @click.command("census", epilog=exit_codes.CENSUS)
@@ -35,9 +38,15 @@ from grainclass.cli import exit_codes, options, startup
     type=click.IntRange(min=1),
     help="Worker processes of the local cluster (default: one per CPU this process may use).",
 )
-@options.chunk_size("Triangulations per batch inside a task.")
+@click.option(
+    "--chunk-size",
+    type=click.IntRange(min=1, max=MAX_CHUNK_SIZE),
+    default=DEFAULT_CHUNK_SIZE,
+    show_default=True,
+    help="Triangulations per batch inside a task.",
+)
 @click.option("--plantri", metavar="PATH", help="plantri binary (default: passagemath-plantri's).")
-@options.quiet("No progress on stderr.")
+@click.option("-q", "--quiet", is_flag=True, help="Only the tables, the cross-checks and failures.")
 def census_cmd(
     n_values: list[int],
     output: str,
@@ -56,52 +65,45 @@ def census_cmd(
     checked against plantri's own (-u, -c4, -m4) and the tables are printed and written to DIR.
     Needs the census extra: pip install 'grainclass[census]'.
     """
-    from grainclass.census import dask_client, run_census
+    from grainclass.census import dask_client, require_dask, run_census
     from grainclass.cli.progress import CensusPrinter
-    from grainclass.errors import GrainclassError
 
     startup.resume_collection()
-    try:
-        import distributed  # noqa: F401 (the census extra)
-    except ImportError as exc:
-        raise click.ClickException(
-            f"census needs Dask ({exc.name} is missing): pip install 'grainclass[census]'"
-        ) from None
-    try:
-        with dask_client(scheduler, workers) as client:
-            result = run_census(
-                n_values,
-                parts,
-                output,
-                client,
-                chunk_size,
-                plantri,
-                report=None if quiet else CensusPrinter(),
-            )
-    except (GrainclassError, OSError) as exc:
-        raise click.ClickException(str(exc)) from None
-    _report(result, output)
+    require_dask()
+    with dask_client(scheduler, workers) as client:
+        result = run_census(
+            n_values,
+            parts,
+            output,
+            client,
+            chunk_size,
+            plantri,
+            report=None if quiet else CensusPrinter(),
+        )
+    _report(result, output, quiet)
 
 
-def _report(result, output: str) -> None:
-    """The census's tables and cross-checks on standard output, what it did on standard error."""
-    from grainclass.cli.output import opened, write_all
+def _report(result, output: str, quiet: bool) -> None:
+    """The census's tables and cross-checks on standard output; what it did on standard error
+    unless ``quiet``, and its failures."""
+    from grainclass.cli.output import write_all
     from grainclass.render import render
+    from grainclass.vocabulary import plural
 
-    click.echo(
-        f"census: {len(result.parts)} parts ({result.computed} computed now, "
-        f"{result.skipped} from earlier runs) in {result.seconds:.1f} s",
-        err=True,
-    )
+    if not quiet:
+        click.echo(
+            f"census: {plural(len(result.parts), 'part')} ({result.computed} computed now, "
+            f"{result.skipped} from earlier runs) in {result.seconds:.1f} s",
+            err=True,
+        )
     for failure in result.failures:
         click.echo(f"census: failed: {failure}", err=True)
     if result.summary is None:
         raise click.ClickException(
-            f"{len(result.failures)} task(s) failed; finished parts are kept in {output}: "
-            "run the same command again to retry the rest"
+            f"{plural(len(result.failures), 'task')} failed; finished parts are kept in "
+            f"{output}: run the same command again to retry the rest"
         )
-    with opened("-") as sink:
-        write_all(sink, render(result.summary, ("classes", "split"), "text"))
+    write_all(sys.stdout.buffer, render(result.summary, ("classes", "split"), "text"))
     click.echo("Cross-checks against plantri's own counts")
     for check in result.checks:
         verdict = "ok" if check.ok else "MISMATCH"
@@ -110,4 +112,5 @@ def _report(result, output: str) -> None:
         )
     if not result.ok:
         raise click.ClickException("the census disagrees with plantri (see the cross-checks)")
-    click.echo(f"tables and provenance written to {output}", err=True)
+    if not quiet:
+        click.echo(f"tables and provenance written to {output}", err=True)

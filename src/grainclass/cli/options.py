@@ -1,19 +1,55 @@
-"""The options that several commands share, defined once (each use makes its own click.Option)."""
+"""The options that several commands share, defined once, and the objects they build: every
+command that reads grains gets one ``reading`` (:class:`grainclass.options.ReadOptions`), every
+command that writes a table one ``output`` (:class:`grainclass.options.OutputOptions`).
+
+One vocabulary: ``--input-format`` names the format of inputs, ``--format`` that of outputs,
+``--belt-length L`` the longest belts taken into account, in every command.
+"""
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Callable
-from typing import TypeVar
+from typing import Any, TypeVar
 
 import click
 
-from grainclass import DEFAULT_CHUNK_SIZE
+from grainclass.options import (
+    DEFAULT_CHUNK_SIZE,
+    DEFAULT_TRIPLE_EDGES,
+    LONGEST_BELT,
+    MAX_CHUNK_SIZE,
+    SHORTEST_BELT,
+)
 from grainclass.vocabulary import INPUT_FORMATS, OUTPUT_FORMATS
 
-F = TypeVar("F", bound=Callable)
+F = TypeVar("F", bound=Callable[..., Any])
 
-# Readers size their arrays for a whole chunk at once: a typo's 10**11 would ask for 745 GB.
-MAX_CHUNK_SIZE = 10_000_000
+# The command-line flag of each library parameter, for messages about them.
+FLAGS = {
+    "input_format": "--input-format",
+    "chunk_size": "--chunk-size",
+    "triple_edges": "--triple-edges",
+    "types": "--types",
+    "belt_length": "--belt-length",
+    "include_boundary": "--include-boundary",
+    "jobs": "--jobs",
+    "format": "--format",
+    "output": "--output",
+    "n_values": "--n",
+    "n_faces": "--n",
+    "class_name": "--class",
+    "labels": "--label",
+    "steps": "--times",
+    "series": "--series",
+    "penalty": "--penalty",
+    "min_frequency": "--min-frequency",
+    "seed": "--seed",
+    "flips": "--flips",
+    "kind": "KIND",
+    "periodic": "--periodic",
+    "box": "--box",
+}
 
 
 def key_value(ctx: click.Context, param: click.Parameter, value: str) -> tuple[str, str]:
@@ -45,71 +81,7 @@ def vertex_counts(ctx: click.Context, param: click.Parameter, values: tuple[str,
     return sorted(set(ns))
 
 
-def input_format(*flags: str) -> Callable[[F], F]:
-    """The input format, under ``flags`` (``--format`` is the output format of summarize and
-    types, the input format of classify)."""
-    return click.option(
-        *flags,
-        "input_format",
-        type=click.Choice(["auto", *INPUT_FORMATS]),
-        default="auto",
-        show_default=True,
-        help="Input format; 'auto' sniffs each input.",
-    )
-
-
-triple_edges = click.option(
-    "--triple-edges",
-    default="color=red",
-    show_default=True,
-    metavar="KEY=VALUE",
-    callback=key_value,
-    help="Surface Evolver: the edge attribute that marks triple lines.",
-)
-
-
-def chunk_size(help: str = "Grains per batch (and per Parquet row group).") -> Callable[[F], F]:
-    return click.option(
-        "--chunk-size",
-        type=click.IntRange(min=1, max=MAX_CHUNK_SIZE),
-        default=DEFAULT_CHUNK_SIZE,
-        show_default=True,
-        help=help,
-    )
-
-
-jobs = click.option(
-    "-j",
-    "--jobs",
-    type=click.IntRange(min=1),
-    help="Threads for the compiled kernels (default: the CPUs this process may use).",
-)
-
-
-def quiet(
-    help: str = "No progress on stderr, and classify's counts only if a grain is not ok.",
-) -> Callable[[F], F]:
-    return click.option("-q", "--quiet", is_flag=True, help=help)
-
-
-def types(default: bool) -> Callable[[F], F]:
-    return click.option(
-        "--types/--no-types",
-        default=default,
-        show_default=True,
-        help="Compute the Weinberg vectors (weinberg, symmetry, chirality) of raw inputs; they "
-        "cost several times the rest of the classification.",
-    )
-
-
-def reading_grains(*format_flags: str, types_default: bool | None = True) -> Callable[[F], F]:
-    """The options of every command that reads grains: the input format under
-    ``format_flags``, --triple-edges, --chunk-size, --jobs, --quiet and, unless
-    ``types_default`` is None (the command always computes them), --types/--no-types."""
-    options = [input_format(*format_flags), triple_edges, chunk_size(), jobs, quiet()]
-    if types_default is not None:
-        options.append(types(types_default))
-
+def _stack(options: list[Callable[[F], F]]) -> Callable[[F], F]:
     def decorate(command: F) -> F:
         for option in reversed(options):
             command = option(command)
@@ -118,32 +90,165 @@ def reading_grains(*format_flags: str, types_default: bool | None = True) -> Cal
     return decorate
 
 
-stdout_or_file = click.option(
-    "-o",
-    "--output",
-    default="-",
-    metavar="FILE",
-    callback=nonempty_path,
-    help="Write here instead of stdout.",
-)
+def _deprecated(old: str, new: str) -> Callable[[click.Context, click.Parameter, Any], Any]:
+    def warn(ctx: click.Context, param: click.Parameter, value: Any) -> Any:
+        if value is not None:
+            click.echo(f"grainclass: warning: {old} is deprecated: use {new}", err=True)
+        return value
 
-table_format = click.option(
-    "--format",
-    "output_format",
-    type=click.Choice(OUTPUT_FORMATS),
-    help="Output format (default: from the -o extension, else text).",
-)
+    return warn
 
-belt_length = click.option(
-    "--belt-length",
-    type=click.IntRange(3, 10),
-    default=4,
-    show_default=True,
-    metavar="L",
-    help="The split type of L-belts (k:L:m) instead of 4-belts; Parquet inputs need the "
-    "belts of classify --belts (--belt-lengths L for L > 6).",
-)
 
-include_boundary = click.option(
-    "--include-boundary", is_flag=True, help="Count grains cut by a sample boundary too."
-)
+def belt_length(
+    help: str, default: int | None = None, deprecated_alias: bool = False
+) -> Callable[[F], F]:
+    """``--belt-length L``, L from 4 to 10; ``--belt-lengths`` is kept, hidden, for a release."""
+    options = [
+        click.option(
+            "--belt-length",
+            type=click.IntRange(SHORTEST_BELT, LONGEST_BELT),
+            default=default,
+            show_default=default is not None,
+            metavar="L",
+            help=help,
+        )
+    ]
+    if deprecated_alias:
+        options.append(
+            click.option(
+                "--belt-lengths",
+                "deprecated_belt_lengths",
+                type=click.IntRange(SHORTEST_BELT, LONGEST_BELT),
+                hidden=True,
+                callback=_deprecated("--belt-lengths", "--belt-length"),
+            )
+        )
+    return _stack(options)
+
+
+def reading(
+    types_default: bool | None = True,
+    boundary: bool = True,
+    belts: Callable[[F], F] | None = None,
+    deprecated_format: bool = False,
+    quiet_help: str = "No progress on stderr.",
+) -> Callable[[F], F]:
+    """The options of a command that reads grains, passed to it as one ``reading``
+    (:class:`~grainclass.options.ReadOptions`) and ``quiet``: --input-format, --triple-edges,
+    --chunk-size, --jobs, --quiet; --types/--no-types unless ``types_default`` is None (the
+    command always computes them, or never needs them); --include-boundary if ``boundary``;
+    the ``belts`` option (:func:`belt_length`) if given; classify's old --format if
+    ``deprecated_format``."""
+    options: list[Callable[[F], F]] = [
+        click.option(
+            "--input-format",
+            type=click.Choice(["auto", *INPUT_FORMATS]),
+            default="auto",
+            show_default=True,
+            help="Input format; 'auto' sniffs each input.",
+        ),
+        click.option(
+            "--triple-edges",
+            default="=".join(DEFAULT_TRIPLE_EDGES),
+            show_default=True,
+            metavar="KEY=VALUE",
+            callback=key_value,
+            help="Surface Evolver: the edge attribute that marks triple lines.",
+        ),
+        click.option(
+            "--chunk-size",
+            type=click.IntRange(min=1, max=MAX_CHUNK_SIZE),
+            default=DEFAULT_CHUNK_SIZE,
+            show_default=True,
+            help="Grains per batch (and per Parquet row group).",
+        ),
+        click.option(
+            "-j",
+            "--jobs",
+            type=click.IntRange(min=1, max=1 << 16),
+            help="Threads for the compiled kernels (default: the CPUs this process may use).",
+        ),
+        click.option("-q", "--quiet", is_flag=True, help=quiet_help),
+    ]
+    if types_default is not None:
+        options.append(
+            click.option(
+                "--types/--no-types",
+                default=types_default,
+                show_default=True,
+                help="Compute the Weinberg vectors (weinberg, symmetry, chirality) of raw "
+                "inputs; they cost several times the rest of the classification.",
+            )
+        )
+    if boundary:
+        options.append(
+            click.option(
+                "--include-boundary",
+                is_flag=True,
+                help="Count grains cut by a sample boundary too.",
+            )
+        )
+    if belts is not None:
+        options.append(belts)
+    if deprecated_format:
+        options.append(
+            click.option(
+                "--format",
+                "deprecated_format",
+                type=click.Choice(INPUT_FORMATS),
+                hidden=True,
+                callback=_deprecated("classify --format", "--input-format"),
+            )
+        )
+
+    def decorate(command: F) -> F:
+        @functools.wraps(command)
+        def with_reading(*args: Any, **kwargs: Any) -> Any:
+            from grainclass.options import ReadOptions
+
+            input_format = kwargs.pop("input_format")
+            input_format = kwargs.pop("deprecated_format", None) or input_format
+            length = kwargs.pop("belt_length", None)
+            length = kwargs.pop("deprecated_belt_lengths", None) or length
+            kwargs["reading"] = ReadOptions(
+                input_format=None if input_format == "auto" else input_format,
+                chunk_size=kwargs.pop("chunk_size"),
+                triple_edges=kwargs.pop("triple_edges"),
+                types=kwargs.pop("types", True if types_default is None else types_default),
+                belt_length=length,
+                include_boundary=kwargs.pop("include_boundary", False),
+                jobs=kwargs.pop("jobs"),
+            )
+            return command(*args, **kwargs)
+
+        return _stack(options)(with_reading)  # type: ignore[return-value]
+
+    return decorate
+
+
+def table_output(help: str = "Write here instead of stdout.") -> Callable[[F], F]:
+    """``-o/--output`` and ``--format`` of a command that writes a table, passed to it as one
+    ``output`` (:class:`~grainclass.options.OutputOptions`)."""
+    options: list[Callable[[F], F]] = [
+        click.option(
+            "-o", "--output", default="-", metavar="FILE", callback=nonempty_path, help=help
+        ),
+        click.option(
+            "--format",
+            "output_format",
+            type=click.Choice(OUTPUT_FORMATS),
+            help="Output format (default: from the -o extension, else text).",
+        ),
+    ]
+
+    def decorate(command: F) -> F:
+        @functools.wraps(command)
+        def with_output(*args: Any, **kwargs: Any) -> Any:
+            from grainclass.options import OutputOptions
+
+            kwargs["output"] = OutputOptions(kwargs.pop("output"), kwargs.pop("output_format"))
+            return command(*args, **kwargs)
+
+        return _stack(options)(with_output)  # type: ignore[return-value]
+
+    return decorate

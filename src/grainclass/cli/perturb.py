@@ -5,7 +5,8 @@ from __future__ import annotations
 import click
 
 from grainclass.cli import exit_codes, options, startup
-from grainclass.vocabulary import STATUSES
+from grainclass.options import ReadOptions
+from grainclass.vocabulary import STATUSES, plural
 
 EPILOG = exit_codes.epilog(
     "success (grains that are not ok, or have no admissible edge left, are written as they "
@@ -35,18 +36,22 @@ EPILOG = exit_codes.epilog(
     help="Random seed, 0 to 2^64-1: the same seed gives the same grains, whatever --jobs and "
     "--chunk-size (default: a new one, reported on stderr).",
 )
-@options.stdout_or_file
-@options.reading_grains("--input-format", types_default=None)
+@click.option(
+    "-o",
+    "--output",
+    default="-",
+    metavar="FILE",
+    callback=options.nonempty_path,
+    help="Write here instead of stdout.",
+)
+@options.reading(types_default=None, boundary=False, quiet_help="No report on stderr.")
 def perturb_cmd(
     inputs: tuple[str, ...],
     flips: int | None,
     all_flips: bool,
     seed: int | None,
     output: str,
-    input_format: str,
-    triple_edges: tuple[str, str],
-    chunk_size: int,
-    jobs: int | None,
+    reading: ReadOptions,
     quiet: bool,
 ) -> None:
     """Flip edges of every ok grain of INPUT...: the paper's topological edge errors.
@@ -65,43 +70,27 @@ def perturb_cmd(
         raise click.UsageError(
             "--all-flips makes every flip: it draws nothing, and needs no --seed"
         )
-    startup.read_ahead(inputs, input_format)
-    from grainclass.cli.output import opened, write_all
-    from grainclass.cli.progress import Progress
-    from grainclass.errors import GrainclassError
-    from grainclass.parallel import set_jobs
+    startup.begin(inputs, reading)
+    from grainclass.atomic import atomic_output
+    from grainclass.cli.output import write_all
     from grainclass.perturb import Counts, new_seed, output_format, perturbed_batches
     from grainclass.writers import PLANAR_CODE_HEADER
 
-    if jobs is not None:
-        set_jobs(jobs)
-    fmt = None if input_format == "auto" else input_format
     given = seed is not None
     seed = seed if given else new_seed()
     counts = Counts()
-    with opened(output) as sink:
-        try:
-            out_fmt = "adjacency" if all_flips else output_format(inputs, fmt)
-            if out_fmt == "planar_code":
-                if output == "-" and sink.isatty():
-                    raise click.UsageError(
-                        "refusing to write planar_code to a terminal; use -o FILE"
-                    )
-                write_all(sink, PLANAR_CODE_HEADER)
-            results = perturbed_batches(
-                list(inputs),
-                None if all_flips else flips,
-                seed,
-                fmt,
-                chunk_size,
-                triple_edges,
-                write=out_fmt,
-            )
-            for item in Progress.on_terminal(quiet).wrap(startup.after_start_up(results)):
-                write_all(sink, item.data)
-                counts.add(item)
-        except GrainclassError as exc:
-            raise click.ClickException(str(exc)) from None
+    with atomic_output(output) as sink:
+        out_fmt = "adjacency" if all_flips else output_format(inputs, reading.input_format)
+        if out_fmt == "planar_code":
+            if output == "-" and sink.isatty():
+                raise click.UsageError("refusing to write planar_code to a terminal; use -o FILE")
+            write_all(sink, PLANAR_CODE_HEADER)
+        results = perturbed_batches(
+            list(inputs), None if all_flips else flips, seed, reading, write=out_fmt
+        )
+        for item in startup.watcher(quiet)(results):
+            write_all(sink, item.data)
+            counts.add(item)
     if not quiet or (counts.stuck and not all_flips) or counts.left_out:
         click.echo(f"grainclass: {_report(counts, flips, None if given else seed)}", err=True)
 
@@ -111,12 +100,13 @@ def _report(counts, flips: int | None, seed: int | None) -> str:
     bad = sum(counts.not_ok.values())
     detail = ", ".join(f"{counts.not_ok[s]} {s}" for s in STATUSES if s in counts.not_ok)
     if flips is None:
-        what = f"{counts.written} grains written, one per admissible flip of {counts.ok} ok grains"
+        written, ok = plural(counts.written, "grain"), plural(counts.ok, "ok grain")
+        what = f"{written} written, one per admissible flip of {ok}"
         if counts.stuck:
             what += f" ({counts.stuck} with no admissible edge gave none)"
         rest = f"; {bad} not ok ({detail}) gave none" if bad else ""
     else:
-        what = f"{counts.grains} grains: {counts.ok} ok, {flips} flip(s) each"
+        what = f"{plural(counts.grains, 'grain')}: {counts.ok} ok, {plural(flips, 'flip')} each"
         if counts.stuck:
             what += (
                 f", but {counts.stuck} had no admissible edge left before the last "
@@ -125,5 +115,6 @@ def _report(counts, flips: int | None, seed: int | None) -> str:
         rest = f"; {bad} not ok ({detail}), written unchanged" if bad else ""
         rest += f"; seed {seed}" if seed is not None else ""
     if counts.left_out:
-        rest += f"; {counts.left_out} record(s) that could not be read left out of the planar_code"
+        records = plural(counts.left_out, "record")
+        rest += f"; {records} that could not be read left out of the planar_code"
     return what + rest

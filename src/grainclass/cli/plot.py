@@ -2,24 +2,28 @@
 
 from __future__ import annotations
 
-import os
-
 import click
 
 from grainclass.cli import exit_codes, options, startup
-from grainclass.vocabulary import CLASSES, NAMED_SERIES, PLOT_KINDS
+from grainclass.options import ReadOptions
+from grainclass.vocabulary import CLASSES, NAMED_SERIES, PENALTIES, PLOT_KINDS
 
 EPILOG = exit_codes.epilog(
     "success",
     "an input could not be read or cannot give the figure (no ok grains, no volumes for Q, no "
-    "time step in its name), or an output could not be written",
+    "time step in its name), matplotlib is not installed, or an output could not be written",
 )
 
 
 def _figure_path(ctx: click.Context, param: click.Parameter, value: str) -> str:
+    from grainclass.errors import OptionError
+    from grainclass.plots import figure_format
+
     options.nonempty_path(ctx, param, value)
-    if os.path.splitext(value)[1].lower() not in (".png", ".svg", ".pdf"):
-        raise click.BadParameter(f"{value!r}: a figure is a .png, .svg or .pdf file")
+    try:
+        figure_format(value)
+    except OptionError as exc:
+        raise click.BadParameter(exc.message) from None
     return value
 
 
@@ -73,11 +77,11 @@ def _times(ctx: click.Context, param: click.Parameter, value: str | None) -> lis
 )
 @click.option(
     "--penalty",
-    type=click.Choice(["P4", "P4..L", "P4/sym", "P4..L/sym", "sym", "(1+P4)*sym", "(1+P4..L)*sym"]),
+    type=click.Choice(PENALTIES),
     default="P4",
     show_default=True,
     help="penalty: the candidate drawn (see grainclass penalties; P4 is the paper's, the "
-    "others need the belts of classify --belts, L = 6).",
+    "others need the belts of classify --belt-length L, L = 6 unless --belt-length).",
 )
 @click.option(
     "--series",
@@ -97,12 +101,10 @@ def _times(ctx: click.Context, param: click.Parameter, value: str | None) -> lis
     help="edge-errors: the seed of the random edge flips, as grainclass perturb --seed "
     "(default 0).",
 )
-@options.include_boundary
-@options.input_format("--input-format")
-@options.triple_edges
-@options.chunk_size()
-@options.jobs
-@options.quiet("No progress on stderr.")
+@options.reading(
+    types_default=None,
+    belts=options.belt_length("penalty: the candidates' belts of l = 4..L (default 6)."),
+)
 def plot_cmd(
     kind: str,
     inputs: tuple[str, ...],
@@ -115,11 +117,7 @@ def plot_cmd(
     series: tuple[str, ...],
     times: list[float] | None,
     seed: int | None,
-    include_boundary: bool,
-    input_format: str,
-    triple_edges: tuple[str, str],
-    chunk_size: int,
-    jobs: int | None,
+    reading: ReadOptions,
     quiet: bool,
 ) -> None:
     """Draw one of the paper's figures for the grains of INPUT...
@@ -141,72 +139,31 @@ def plot_cmd(
     summarize reads, classified on the fly ('-' reads standard input). Needs the plot extra:
     pip install 'grainclass[plot]'.
     """
-    if kind == "evolution":
-        if len(labels) > 1:
-            raise click.UsageError("evolution draws one data set: give at most one --label")
-        if times is not None and len(times) != len(inputs):
-            raise click.UsageError(f"--times gives {len(times)} times for {len(inputs)} inputs")
-    elif labels and len(labels) != len(inputs):
-        raise click.UsageError(f"{len(labels)} --label for {len(inputs)} inputs: give one each")
-    if n_values and kind != "round":
-        raise click.UsageError("--n chooses the grains of the round figure")
-    if seed is not None and kind != "edge-errors":
-        raise click.UsageError("--seed is the seed of the edge flips of the edge-errors figure")
-    if penalty != "P4" and kind != "penalty":
-        raise click.UsageError("--penalty chooses the candidate of the penalty figure")
-    startup.read_ahead(inputs, input_format)
-    from grainclass.cli.output import opened, write_all
-    from grainclass.cli.progress import Progress
-    from grainclass.errors import GrainclassError
-    from grainclass.figures import figure_data, read_datasets
-    from grainclass.parallel import set_jobs
+    from grainclass.datasets import FigureRequest
+
+    request = FigureRequest(
+        kind,
+        n_values=n_values,
+        min_frequency=min_frequency,
+        penalty=penalty,
+        series=series or ("flag",),
+        steps=None if times is None else tuple(times),
+        seed=seed,
+    )
+    startup.begin(inputs, reading)
+    from grainclass.atomic import atomic_output
+    from grainclass.cli.output import write_all
+    from grainclass.datasets import figure_table
     from grainclass.plots import draw, require_matplotlib
 
-    try:
-        require_matplotlib()
-    except GrainclassError as exc:
-        raise click.ClickException(str(exc)) from None
-    if jobs is not None:
-        set_jobs(jobs)
-    names = list(inputs) if kind == "evolution" else list(labels) or [_name(p) for p in inputs]
-    fmt = None if input_format == "auto" else input_format
-    progress = Progress.on_terminal(quiet)
-    try:
-        datasets = read_datasets(
-            inputs,
-            names,
-            kind,
-            fmt,
-            chunk_size,
-            triple_edges,
-            include_boundary,
-            n_values,
-            wrap=lambda items: progress.wrap(startup.after_start_up(items)),
-            seed=seed or 0,
-            penalty=penalty,
-        )
-        table = figure_data(
-            kind,
-            datasets,
-            n_values=n_values,
-            min_frequency=min_frequency,
-            series=series or ("flag",),
-            steps=times,
-            label=labels[0] if labels else "steps",
-        )
-        table.attrs["penalty"] = penalty
-        draw(kind, table, output)
-    except GrainclassError as exc:
-        raise click.ClickException(str(exc)) from None
+    require_matplotlib()
+    table = figure_table(list(inputs), request, labels, reading, startup.watcher(quiet))
+    table.attrs["penalty"] = penalty
+    draw(kind, table, output)
     if data is not None:
-        with opened(data) as sink:
+        with atomic_output(data) as sink:
             write_all(sink, table.to_csv(index=False))
     if not quiet:
         click.echo(
             f"grainclass: {kind} figure of {len(table)} points written to {output}", err=True
         )
-
-
-def _name(path: str) -> str:
-    """A data set's default label: its file or folder name; ``stdin`` for standard input."""
-    return "stdin" if path == "-" else os.path.basename(os.path.normpath(path))

@@ -1,12 +1,16 @@
-"""What a command does while the libraries load: standard input read ahead, and the cyclic
-garbage collector kept off until the first batch is through (see :func:`grainclass.cli.main`)."""
+"""What a command does as it starts: standard input read ahead while the libraries load, the
+threads set, the cyclic garbage collector kept off until the first batch is through (see
+:func:`grainclass.cli.main`), and progress drawn as batches go by."""
 
 from __future__ import annotations
 
 import gc
 import sys
-from collections.abc import Iterable, Iterator, Sequence
-from typing import TypeVar
+from collections.abc import Callable, Iterable, Iterator, Sequence
+from typing import TYPE_CHECKING, TypeVar
+
+if TYPE_CHECKING:
+    from grainclass.options import ReadOptions
 
 T = TypeVar("T")
 
@@ -44,3 +48,22 @@ def read_ahead(inputs: Sequence[str], input_format: str) -> None:
     first = inputs[0]
     if first != "-" and input_format != "evolver" and not first.lower().endswith(".fe"):
         read_ahead_path(first)
+
+
+def begin(inputs: Sequence[str], reading: ReadOptions) -> None:
+    """What every command that reads grains does first: its inputs read ahead (see
+    :func:`read_ahead`) and its threads set."""
+    read_ahead(inputs, reading.input_format or "auto")
+    if reading.jobs is not None:
+        from grainclass.parallel import set_jobs
+
+        set_jobs(reading.jobs)
+
+
+def watcher(quiet: bool) -> Callable[[Iterable[T]], Iterator[T]]:
+    """What a command passes the library to see its batches go by: progress on a terminal
+    (unless ``quiet``), and the garbage collector back on after the first."""
+    from grainclass.cli.progress import Progress
+
+    progress = Progress.on_terminal(quiet)
+    return lambda items: progress.wrap(after_start_up(items))

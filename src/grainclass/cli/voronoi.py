@@ -5,6 +5,8 @@ from __future__ import annotations
 import click
 
 from grainclass.cli import exit_codes, options, startup
+from grainclass.cli.progress import Progress
+from grainclass.vocabulary import plural
 
 
 class BoxType(click.ParamType):
@@ -33,7 +35,9 @@ class BoxType(click.ParamType):
                 param,
                 ctx,
             )
-        return (tuple(numbers[0::2]), tuple(numbers[1::2]))
+        from grainclass.voronoi import Box
+
+        return Box(tuple(numbers[0::2]), tuple(numbers[1::2]))
 
 
 def periodic_axes(ctx: click.Context, param: click.Parameter, value: str | None):
@@ -93,8 +97,13 @@ def periodic_axes(ctx: click.Context, param: click.Parameter, value: str | None)
     callback=options.nonempty_path,
     help="Adjacency text with volume= and area= per grain; *.parquet: classified grains.",
 )
-@options.jobs
-@options.quiet("No report on stderr.")
+@click.option(
+    "-j",
+    "--jobs",
+    type=click.IntRange(min=1, max=1 << 16),
+    help="Threads that compute the cells (default: the CPUs this process may use).",
+)
+@click.option("-q", "--quiet", is_flag=True, help="No report on stderr.")
 def voronoi_cmd(
     n_seeds: int | None,
     points_path: str | None,
@@ -116,95 +125,57 @@ def voronoi_cmd(
     checked (every face seen from both sides, the cells filling the box; for random seeds, also
     three faces at each corner); a failed check exits 1.
     """
-    from grainclass.cli.output import quiet_broken_pipe, write_all
-    from grainclass.cli.progress import Progress
-    from grainclass.errors import GrainclassError
-    from grainclass.voronoi import Box, VoronoiReport, check_points, poisson_voronoi, tessellate
-
     if (n_seeds is None) == (points_path is None):
         raise click.UsageError("give either N (random seeds) or --points FILE, not both")
     if points_path is None and (radius_column or points_format != "auto"):
         raise click.UsageError("--radius-column and --points-format go with --points")
+    if points_path is not None and seed is not None:
+        raise click.UsageError("--seed goes with N random seeds, not with --points")
+    from grainclass import voronoi
+
     if jobs is not None:
         from grainclass.parallel import set_jobs
 
         set_jobs(jobs)
     startup.resume_collection()
-    report = VoronoiReport()
+    report = voronoi.VoronoiReport()
     progress = Progress.on_terminal(quiet)
+    weighted = False
     if points_path is None:
-        if periodic is not None and not all(periodic):
-            raise click.UsageError(
-                "random seeds fill a periodic box: --periodic goes with --points"
-            )
-        if box is not None and (set(box[0]) != {0.0} or len(set(box[1])) != 1):
-            raise click.UsageError("random seeds fill a cube: --box L")
-        side = 1.0 if box is None else box[1][0]
-        the_box = Box.cube(side)
+        the_box = voronoi.random_seeds_box(box, periodic)
         if progress.enabled:
             click.echo(f"tessellating {n_seeds:,} seeds with Voro++ ...", err=True)
-        batches = poisson_voronoi(n_seeds, seed, side, report=report)
+        side = float(the_box.high[0])
+        batches = voronoi.poisson_voronoi(n_seeds, seed, side, report=report)
     else:
         from grainclass.readers.points import read_points
 
-        if seed is not None:
-            raise click.UsageError("--seed goes with N random seeds, not with --points")
-        try:
-            points = read_points(
-                points_path, None if points_format == "auto" else points_format, radius_column
-            )
-            low, high, tilt = (*box, None) if box is not None else (None, None, None)
-            if low is None and points.box is not None:
-                low, high, tilt = points.box.low, points.box.high, points.box.tilt
-            if low is None:
-                low, high = (0.0, 0.0, 0.0), (1.0, 1.0, 1.0)
-            if periodic is None:
-                periodic = points.box.periodic if points.box is not None else (True,) * 3
-            the_box = Box(tuple(low), tuple(high), tuple(periodic), tilt)
-            check_points(points, the_box)
-        except GrainclassError as exc:
-            raise click.ClickException(str(exc)) from None
+        fmt = None if points_format == "auto" else points_format
+        points = read_points(points_path, fmt, radius_column)
+        the_box = voronoi.points_box(points, box, periodic)
+        voronoi.check_points(points, the_box)
+        weighted = points.radii is not None
         if progress.enabled:
-            kind = "Laguerre" if points.radii is not None else "Voronoi"
+            kind = "Laguerre" if weighted else "Voronoi"
             click.echo(
                 f"{kind} cells of {len(points.xyz):,} points in {the_box.describe()} ...", err=True
             )
-        batches = tessellate(points, the_box, report=report, checked=True)
-    batches = progress.wrap(batches)
-    try:
-        if output.lower().endswith(".parquet"):
-            from grainclass.classification import classify
-            from grainclass.parquet import GrainTableWriter
-
-            with GrainTableWriter(output) as writer:
-                for batch in batches:
-                    writer.write(classify(batch))
-        else:
-            from grainclass.atomic import atomic_output
-            from grainclass.readers.adjacency import adjacency_lines
-
-            with atomic_output(output) as sink:
-                for batch in batches:
-                    write_all(sink, "".join(adjacency_lines(batch)))
-    except GrainclassError as exc:
-        raise click.ClickException(str(exc)) from None
-    except BrokenPipeError:
-        quiet_broken_pipe()
+        batches = voronoi.tessellate(points, the_box, report=report, checked=True)
+    voronoi.write_cells(progress.wrap(batches), output)
     if not quiet:
         click.echo(
-            f"grainclass: {report.cells} cells, volume {report.volume:.12g} "
+            f"grainclass: {plural(report.cells, 'cell')}, volume {report.volume:.12g} "
             f"(box {the_box.volume:.12g}); boundary cells: {report.boundary}; cells with a "
             f"corner not of three faces: {report.bad_corners}; cells with a face seen from one "
             f"side: {report.one_sided_faces}",
             err=True,
         )
-    weighted = points_path is not None and points.radii is not None
     if report.no_cell and (weighted or not quiet):
         shown = ", ".join(report.no_cell[:10]) + (" ..." if len(report.no_cell) > 10 else "")
         why = " (hidden by their neighbours' radii)" if weighted else ""
         click.echo(
-            f"grainclass: {len(report.no_cell)} point(s) without a cell{why}, so without a "
-            f"grain: {shown}",
+            f"grainclass: {plural(len(report.no_cell), 'point')} without a cell{why}, so "
+            f"without a grain: {shown}",
             err=True,
         )
     problems = report.problems(the_box.volume, simple=points_path is None, weighted=weighted)

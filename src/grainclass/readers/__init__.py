@@ -10,31 +10,32 @@ from __future__ import annotations
 import io
 import warnings
 from collections.abc import Callable, Iterator, Sequence
+from typing import Any
 
-from grainclass import DEFAULT_CHUNK_SIZE
 from grainclass.batch import GrainBatch
 from grainclass.errors import EmptyInputWarning, InputError
+from grainclass.options import ReadOptions
 from grainclass.readers.adjacency import read_adjacency
-from grainclass.readers.evolver import DEFAULT_TRIPLE_EDGES, read_evolver
+from grainclass.readers.evolver import read_evolver
 from grainclass.readers.loops import read_loops
 from grainclass.readers.neper import read_neper
 from grainclass.readers.planar_code import PlanarCodeRecords, read_planar_code
 from grainclass.readers.sniffing import _BOM, SNIFF_BYTES, _returns_alone, not_grains, sniff
 from grainclass.readers.streams import (
-    _expand,
     _is_stream,
     _open,
     _ReturnsAsNewlines,
     done_reading,
+    expand_paths,
     read_once,
 )
 from grainclass.readers.voro import read_voro
-from grainclass.vocabulary import INPUT_FORMATS
 
 __all__ = [
     "SNIFF_BYTES",
     "STREAM_READERS",
     "done_reading",
+    "expand_paths",
     "not_grains",
     "read_dataset",
     "read_once",
@@ -68,10 +69,9 @@ def _sniff_path(path: str, format: str | None) -> str:
 
 def read_dataset(
     paths: Sequence[str] | str,
-    format: str | None = None,
-    chunk_size: int = DEFAULT_CHUNK_SIZE,
-    triple_edges: tuple[str, str] = DEFAULT_TRIPLE_EDGES,
+    options: ReadOptions | None = None,
     raw_planar_code: bool = False,
+    **settings: Any,
 ) -> Iterator[GrainBatch | PlanarCodeRecords]:
     """Read grains from one or more inputs, in order, as batches.
 
@@ -79,15 +79,15 @@ def read_dataset(
     ----------
     paths : str or sequence of str
         Files to read; ``-`` is standard input; a folder stands for its ``*.fe`` files.
-    format : {None, "adjacency", "planar_code", "evolver", "voro", "neper", "loops"}
-        The input format; None sniffs it from each input (``.fe`` files are Surface Evolver;
-        face-vertex-loop text must be named, it looks like adjacency text).
-    chunk_size : int
-        Grains per batch at most.
-    triple_edges : (str, str)
-        Surface Evolver only: the edge attribute and value marking triple lines.
+    options : ReadOptions, optional
+        How to read them: ``input_format`` (None sniffs each input: ``.fe`` files are Surface
+        Evolver; face-vertex-loop text must be named, it looks like adjacency text),
+        ``chunk_size`` (grains per batch at most), ``triple_edges`` (Surface Evolver: the edge
+        attribute and value marking triple lines).
     raw_planar_code : bool
         Leave planar_code records as bytes (:class:`PlanarCodeRecords`), for the census path.
+    **settings
+        Fields of :class:`~grainclass.options.ReadOptions` in place of those of ``options``.
 
     Yields
     ------
@@ -97,12 +97,15 @@ def read_dataset(
     ------
     InputError
         When an input cannot be opened or read at all.
+    OptionError
+        For a setting that is not a reading option, or a value it cannot take.
     """
+    options = ReadOptions.of(options, **settings)
     if isinstance(paths, str):
         paths = [paths]
-    if format is not None and format not in INPUT_FORMATS:
-        raise ValueError(f"unknown format {format!r}; expected one of {', '.join(INPUT_FORMATS)}")
-    paths = _expand(paths)
+    format, chunk_size = options.input_format, options.chunk_size
+    triple_edges = options.triple_edges
+    paths = expand_paths(paths)
     formats = [_sniff_path(path, format) for path in paths]
     # Consecutive .fe files are read as one dataset (standard input cannot be one of them).
     evolver_files = [

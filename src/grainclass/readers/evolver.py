@@ -33,12 +33,13 @@ from grainclass._kernels import evolver as kernels
 from grainclass.batch import GrainBatch, no_body_has
 from grainclass.errors import InputError
 from grainclass.geometry import polytope_measures
+from grainclass.options import DEFAULT_TRIPLE_EDGES
 from grainclass.parallel import map_ordered
 from grainclass.readers.sniffing import SNIFF_BYTES, not_grains
+from grainclass.vocabulary import plural
 
 # What one entry of each section is called in messages, by the kernels' entry kinds.
 ENTRY_NAMES = ("vertex", "edge", "facet", "body")
-DEFAULT_TRIPLE_EDGES = ("color", "red")
 PART_FILES = 64  # files parsed by one call of the kernels
 PART_BYTES = 4 << 20  # and at most about this many bytes
 
@@ -371,7 +372,7 @@ def _message(code: int, body: int, params: list[int]) -> str:
             "do not add up to none"
         )
     if code == kernels.GRAIN_NOT_CLOSED:
-        return f"not a closed surface: edge {a} lies on {b} facet(s) of body {body}"
+        return f"not a closed surface: edge {a} lies on {plural(b, 'facet')} of body {body}"
     if code == kernels.GRAIN_ORIENTATION:
         return (
             f"not an oriented surface: facets {a} and {b} of body {body} both run along edge "

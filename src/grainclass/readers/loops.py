@@ -19,6 +19,7 @@ import numpy as np
 
 from grainclass.batch import GrainBatch, offsets_from_counts, run_indices, tri_state
 from grainclass.readers.adjacency import key_values, parse_face_fields
+from grainclass.vocabulary import plural
 
 
 def batch_from_loops(
@@ -161,7 +162,7 @@ class _Rows:
             for g in np.flatnonzero(not_sphere):
                 u, v, count = bad[g]
                 self.errors[int(g)] = (
-                    f"not a closed surface: edge {u}-{v} lies on {count} face(s)"
+                    f"not a closed surface: edge {u}-{v} lies on {plural(count, 'face')}"
                     if flags[g] & OPEN
                     else f"not a sphere: corners - edges + faces = {count}, not 2 (two corners "
                     "with one id, where the surface touches itself, or a handle)"

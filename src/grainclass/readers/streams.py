@@ -18,14 +18,17 @@ from grainclass.pipes import PIPE_BYTES, enlarge_pipe, reading_ahead, take_read_
 from grainclass.readers.sniffing import SNIFF_BYTES
 
 
-def _expand(paths: Sequence[str]) -> list[str]:
-    """A folder stands for its ``*.fe`` files, in name order (one grain-growth dump)."""
+def expand_paths(paths: Sequence[str]) -> list[str]:
+    """A folder stands for its per-grain Parquet files (a data set written in parts) or else
+    its ``*.fe`` files (one grain-growth dump), in name order."""
     expanded = []
     for path in paths:
         if path != "-" and os.path.isdir(path):
-            files = sorted(f for f in os.listdir(path) if f.lower().endswith(".fe"))
+            names = sorted(os.listdir(path))
+            files = [f for f in names if f.lower().endswith(".parquet")]
+            files = files or [f for f in names if f.lower().endswith(".fe")]
             if not files:
-                raise InputError(path, "a folder given as input must hold *.fe files")
+                raise InputError(path, "a folder given as input must hold *.parquet or *.fe files")
             expanded += [os.path.join(path, f) for f in files]
         else:
             expanded.append(path)

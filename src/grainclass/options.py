@@ -1,0 +1,167 @@
+"""How grains are read and results written: two small frozen objects, built once per command
+(or per library call) and passed whole through readers, pipeline and summaries.
+
+Each field is checked once, here, when the object is made: a value the library cannot take is an
+:class:`~grainclass.errors.OptionError` that names the field, which the command line words with
+its flag.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import os
+from dataclasses import dataclass
+from typing import Any
+
+from grainclass.errors import OptionError
+from grainclass.vocabulary import INPUT_FORMATS, OUTPUT_FORMATS
+
+DEFAULT_CHUNK_SIZE = 50_000
+"""Grains per batch: per compiled call, per thread and per Parquet row group."""
+
+MAX_CHUNK_SIZE = 10_000_000
+"""Readers size their arrays for a whole chunk at once: a typo's 10**11 would ask for 745 GB."""
+
+DEFAULT_TRIPLE_EDGES = ("color", "red")
+"""The Surface Evolver edge attribute that marks triple lines, as the grain-growth files have it."""
+
+SHORTEST_BELT, LONGEST_BELT = 4, 10
+"""The belt lengths a reading may ask for: 4-belts are the paper's; beyond 10 the counts grow
+past what a per-grain list is for."""
+
+TABLE_EXTENSIONS = {
+    ".txt": "text",
+    ".csv": "csv",
+    ".md": "markdown",
+    ".markdown": "markdown",
+    ".tex": "latex",
+    ".latex": "latex",
+    ".json": "json",
+    ".parquet": "parquet",
+}
+"""The format of a table output named by its file's extension."""
+
+
+@dataclass(frozen=True)
+class ReadOptions:
+    """How the grains of inputs are read and classified.
+
+    Parameters
+    ----------
+    input_format : str or None
+        One of :data:`grainclass.vocabulary.INPUT_FORMATS`; None sniffs each input.
+    chunk_size : int
+        Grains per batch (and per Parquet row group), 1 to :data:`MAX_CHUNK_SIZE`.
+    triple_edges : (str, str)
+        Surface Evolver: the edge attribute and value that mark triple lines.
+    types : bool
+        Compute the Weinberg vectors (weinberg, symmetry, chirality) of raw inputs.
+    belt_length : int or None
+        Take belts up to this length (4 to 10) into account: per-grain lists of belts of
+        lengths 3..L, the split type of L-belts in summaries and type counts, belt penalties
+        summed over 4..L. None: the paper's 4-belts only.
+    include_boundary : bool
+        Count grains cut by a sample boundary too (summaries, types and penalties leave them
+        out by default: their faces there are cuts, not grain boundaries).
+    jobs : int or None
+        Threads for the compiled kernels; None: every CPU this process may use.
+
+    Examples
+    --------
+    >>> ReadOptions(input_format="planar_code").chunk_size
+    50000
+    >>> ReadOptions(belt_length=12)
+    Traceback (most recent call last):
+    ...
+    grainclass.errors.OptionError: belt lengths go from 4 to 10, not 12
+    """
+
+    input_format: str | None = None
+    chunk_size: int = DEFAULT_CHUNK_SIZE
+    triple_edges: tuple[str, str] = DEFAULT_TRIPLE_EDGES
+    types: bool = True
+    belt_length: int | None = None
+    include_boundary: bool = False
+    jobs: int | None = None
+
+    def __post_init__(self) -> None:
+        if self.input_format is not None and self.input_format not in INPUT_FORMATS:
+            raise OptionError(
+                "input_format",
+                f"unknown input format {self.input_format!r}; expected one of "
+                f"{', '.join(INPUT_FORMATS)}",
+            )
+        _require_int("chunk_size", self.chunk_size, 1, MAX_CHUNK_SIZE, "grains per batch")
+        if self.belt_length is not None:
+            _require_int(
+                "belt_length", self.belt_length, SHORTEST_BELT, LONGEST_BELT, "belt lengths"
+            )
+        if self.jobs is not None:
+            _require_int("jobs", self.jobs, 1, 1 << 16, "jobs")
+        key_value = tuple(self.triple_edges)
+        if len(key_value) != 2 or not all(isinstance(s, str) and s for s in key_value):
+            raise OptionError(
+                "triple_edges", f"the triple-edge mark is a (key, value) pair, not {key_value!r}"
+            )
+        object.__setattr__(self, "triple_edges", key_value)
+
+    @classmethod
+    def of(cls, options: ReadOptions | None = None, **settings: Any) -> ReadOptions:
+        """``options`` (default: the defaults) with ``settings`` in place of its fields.
+
+        Raises
+        ------
+        OptionError
+            For a setting that is no field, or a value a field cannot take.
+        """
+        base = options if options is not None else cls()
+        unknown = set(settings) - {field.name for field in dataclasses.fields(cls)}
+        if unknown:
+            raise OptionError(
+                sorted(unknown)[0], f"no such reading option: {', '.join(sorted(unknown))}"
+            )
+        return dataclasses.replace(base, **settings) if settings else base
+
+    @property
+    def longest_belt(self) -> int:
+        """The longest belts the classification counts beyond its 4-belts (0: none)."""
+        return self.belt_length or 0
+
+    @property
+    def split_length(self) -> int:
+        """The length of the belts whose split type summaries and type counts give."""
+        return self.belt_length or SHORTEST_BELT
+
+
+@dataclass(frozen=True)
+class OutputOptions:
+    """Where a table goes and in which format.
+
+    ``path`` is a file, or ``-`` for standard output; ``format`` one of
+    :data:`grainclass.vocabulary.OUTPUT_FORMATS`, or None to go by the path's extension
+    (:data:`TABLE_EXTENSIONS`), else text.
+    """
+
+    path: str = "-"
+    format: str | None = None
+
+    def __post_init__(self) -> None:
+        if self.format is not None and self.format not in OUTPUT_FORMATS:
+            raise OptionError(
+                "format",
+                f"unknown output format {self.format!r}; expected one of "
+                f"{', '.join(OUTPUT_FORMATS)}",
+            )
+        if not self.path:
+            raise OptionError("output", "an empty path names no file")
+
+    @property
+    def table_format(self) -> str:
+        """The format tables are written in."""
+        extension = os.path.splitext(self.path)[1].lower()
+        return self.format or TABLE_EXTENSIONS.get(extension, "text")
+
+
+def _require_int(name: str, value: object, low: int, high: int, what: str) -> None:
+    if isinstance(value, bool) or not isinstance(value, int) or not low <= value <= high:
+        raise OptionError(name, f"{what} go from {low} to {high}, not {value!r}")
