@@ -17,8 +17,9 @@ from click.testing import CliRunner
 
 from conftest import ctrl_c_at_a_terminal
 from grainclass import classify, read_dataset
+from grainclass.box import Box
 from grainclass.cli import cli
-from grainclass.voronoi import Box, VoronoiReport, block_order, poisson_voronoi
+from grainclass.voronoi import VoronoiReport, block_order, poisson_voronoi
 
 KEYS = ["n_faces", "p_vector", "class", "trees", "split_k", "penalty", "weinberg", "symmetry"]
 
@@ -314,8 +315,9 @@ def test_voro_command_line_output_gives_the_same_grains(tmp_path):
 
 
 def test_seeds_closer_than_voro_can_separate_are_refused():
+    from grainclass.box import Points
     from grainclass.errors import GrainclassError
-    from grainclass.voronoi import SAFETY, Points, check_points
+    from grainclass.voronoi import SAFETY, check_points
 
     rng = np.random.default_rng(0)
     xyz = rng.random((1000, 3)) * 1024

@@ -9,6 +9,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from grainclass.errors import OptionError
+
 if TYPE_CHECKING:
     import pyarrow as pa
 
@@ -93,20 +95,24 @@ class GrainBatch:
             object.__setattr__(self, name, np.ascontiguousarray(getattr(self, name), dtype=dtype))
         g = len(self.grain_id)
         if self.face_offsets.shape != (g + 1,) or self.face_offsets[0] != 0:
-            raise ValueError("face_offsets must have one entry per grain plus a leading 0")
+            raise OptionError(
+                "face_offsets", "face_offsets must have one entry per grain plus a leading 0"
+            )
         if self.nbr_offsets.shape != (self.face_offsets[-1] + 1,) or self.nbr_offsets[0] != 0:
-            raise ValueError("nbr_offsets must have one entry per face plus a leading 0")
+            raise OptionError(
+                "nbr_offsets", "nbr_offsets must have one entry per face plus a leading 0"
+            )
         if self.neighbors.shape != (self.nbr_offsets[-1],):
-            raise ValueError("neighbors must end where nbr_offsets says")
+            raise OptionError("neighbors", "neighbors must end where nbr_offsets says")
         if len(self.location) != g:
-            raise ValueError("location needs one entry per grain")
+            raise OptionError("location", "location needs one entry per grain")
         if not isinstance(self.source, str) and len(self.source) != g:
-            raise ValueError("source needs one entry per grain, or one for all")
+            raise OptionError("source", "source needs one entry per grain, or one for all")
         if self.face_labels is not None:
             labels = np.ascontiguousarray(self.face_labels, dtype=np.int64)
             object.__setattr__(self, "face_labels", labels)
             if labels.shape != (self.face_offsets[-1],):
-                raise ValueError("face_labels needs one entry per face")
+                raise OptionError("face_labels", "face_labels needs one entry per face")
 
     def __len__(self) -> int:
         return len(self.grain_id)

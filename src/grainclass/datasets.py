@@ -23,8 +23,8 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, TypeVar
 
 from grainclass.errors import DataError, OptionError
-from grainclass.options import ReadOptions
-from grainclass.vocabulary import CLASSES, NAMED_SERIES, PENALTIES, PLOT_KINDS
+from grainclass.options import FigureOptions, ReadOptions
+from grainclass.vocabulary import CLASSES
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -222,53 +222,12 @@ def penalty_table(
         return penalty_correlations(tables, n_values, options.include_boundary, options.belt_length)
 
 
-@dataclass(frozen=True)
-class FigureRequest:
-    """What a figure draws: its ``kind`` (:data:`grainclass.vocabulary.PLOT_KINDS`) and what
-    that kind takes: ``n_values`` (round: grains with these numbers of faces),
-    ``min_frequency`` and ``penalty`` (penalty: the least frequency drawn, the candidate of
-    :data:`grainclass.vocabulary.PENALTIES`), ``series`` and ``steps`` (evolution: classes or
-    named kinds to follow, the time of each input), ``seed`` (edge-errors: of the flips,
-    default 0)."""
-
-    kind: str
-    n_values: tuple[int, ...] = ()
-    min_frequency: float = 1e-5
-    penalty: str = "P4"
-    series: tuple[str, ...] = ("flag",)
-    steps: tuple[float, ...] | None = None
-    seed: int | None = None
-
-    def __post_init__(self) -> None:
-        if self.kind not in PLOT_KINDS:
-            raise OptionError("kind", f"no figure {self.kind!r}: one of {', '.join(PLOT_KINDS)}")
-        if self.n_values and self.kind != "round":
-            raise OptionError("n_values", "numbers of faces choose the grains of the round figure")
-        if self.seed is not None and self.kind != "edge-errors":
-            raise OptionError("seed", "a seed is that of the edge flips of the edge-errors figure")
-        if self.penalty not in PENALTIES:
-            raise OptionError("penalty", f"no penalty {self.penalty!r}: one of {PENALTIES}")
-        if self.penalty != "P4" and self.kind != "penalty":
-            raise OptionError("penalty", "a penalty is the candidate of the penalty figure")
-        if not 0 <= self.min_frequency <= 1:
-            raise OptionError("min_frequency", "a frequency goes from 0 to 1")
-        unknown = set(self.series) - {*CLASSES, *NAMED_SERIES}
-        if unknown:
-            raise OptionError("series", f"no series {sorted(unknown)[0]!r}")
-        if self.steps is not None and not all(map(_finite, self.steps)):
-            raise OptionError("steps", "a time step is a finite number")
-
-
-def _finite(value: float) -> bool:
-    return value == value and abs(value) != float("inf")
-
-
 TYPED_KINDS = ("penalty", "ranks")  # kinds drawn from type tables (Weinberg vectors)
 
 
 def figure_table(
     paths: Paths,
-    request: FigureRequest,
+    request: FigureOptions,
     labels: Sequence[str] = (),
     options: ReadOptions | None = None,
     watch: Watch = _unwatched,
@@ -311,7 +270,7 @@ def figure_table(
 
 
 def _datasets(
-    paths: list[str], names: list[str], request: FigureRequest, options: ReadOptions, watch: Watch
+    paths: list[str], names: list[str], request: FigureOptions, options: ReadOptions, watch: Watch
 ) -> list[Dataset]:
     """Each input as a data set of the figure: its summary, or, for the kinds drawn from types,
     its type table; for ``edge-errors``, the first input's counts after 0..3 random edge flips
@@ -370,7 +329,7 @@ def _edge_error_datasets(
 
 
 def _candidate_types(
-    path: str, request: FigureRequest, options: ReadOptions, watch: Watch
+    path: str, request: FigureOptions, options: ReadOptions, watch: Watch
 ) -> pd.DataFrame:
     """The flag types of one input with the candidate penalty in the penalty column and their
     frequency among its ok grains."""

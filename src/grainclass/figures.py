@@ -23,7 +23,7 @@ from grainclass.errors import DataError
 from grainclass.summary import ROUND_LEVELS, Summary
 
 if TYPE_CHECKING:
-    from grainclass.datasets import FigureRequest
+    from grainclass.options import FigureOptions
 
 COLUMNS = ["dataset", "series", "x", "y"]
 ROUND_PEAK = "Round (flag peak)"
@@ -181,7 +181,7 @@ def series_percent(summary: Summary, series: str) -> float:
         rows = split[split["n"] == 12] if series == "dodecahedron" else split
         count = int(rows["0"].sum()) if "0" in split.columns else 0
     else:
-        raise AssertionError(f"no series {series!r}: FigureRequest checks its series")
+        raise AssertionError(f"no series {series!r}: FigureOptions checks its series")
     return 100.0 * count / total if total else math.nan
 
 
@@ -270,7 +270,7 @@ def round_k_frequencies(datasets: Sequence[Dataset]) -> pd.DataFrame:
     return _frame(rows, COLUMNS)
 
 
-def figure_data(request: FigureRequest, datasets: Sequence[Dataset], label: str) -> pd.DataFrame:
+def figure_data(request: FigureOptions, datasets: Sequence[Dataset], label: str) -> pd.DataFrame:
     """The tidy table of the figure ``request.kind`` for ``datasets``; ``evolution`` takes them
     as the time steps of one data set, ``label``, at ``request.steps`` (else read from their
     labels, the inputs' names, by :func:`steps_from_names`)."""
@@ -296,4 +296,4 @@ def figure_data(request: FigureRequest, datasets: Sequence[Dataset], label: str)
         else:
             _require_distinct(labels, steps)
         return evolution(datasets, steps, request.series, label)
-    raise AssertionError(f"a FigureRequest of no known kind: {kind!r}")
+    raise AssertionError(f"a FigureOptions of no known kind: {kind!r}")

@@ -1,5 +1,6 @@
-"""How grains are read and results written: two small frozen objects, built once per command
-(or per library call) and passed whole through readers, pipeline and summaries.
+"""How grains are read, what a figure draws and where results go: small frozen objects, built
+once per command (or per library call) and passed whole through readers, pipeline, summaries
+and figures.
 
 Each field is checked once, here, when the object is made: a value the library cannot take is an
 :class:`~grainclass.errors.OptionError` that names the field, which the command line words with
@@ -14,7 +15,14 @@ from dataclasses import dataclass
 from typing import Any
 
 from grainclass.errors import OptionError
-from grainclass.vocabulary import INPUT_FORMATS, OUTPUT_FORMATS
+from grainclass.vocabulary import (
+    CLASSES,
+    INPUT_FORMATS,
+    NAMED_SERIES,
+    OUTPUT_FORMATS,
+    PENALTIES,
+    PLOT_KINDS,
+)
 
 DEFAULT_CHUNK_SIZE = 50_000
 """Grains per batch: per compiled call, per thread and per Parquet row group."""
@@ -162,6 +170,47 @@ class OutputOptions:
         return self.format or TABLE_EXTENSIONS.get(extension, "text")
 
 
+@dataclass(frozen=True)
+class FigureOptions:
+    """What a figure draws: its ``kind`` (:data:`grainclass.vocabulary.PLOT_KINDS`) and what
+    that kind takes: ``n_values`` (round: grains with these numbers of faces),
+    ``min_frequency`` and ``penalty`` (penalty: the least frequency drawn, the candidate of
+    :data:`grainclass.vocabulary.PENALTIES`), ``series`` and ``steps`` (evolution: classes or
+    named kinds to follow, the time of each input), ``seed`` (edge-errors: of the flips,
+    default 0)."""
+
+    kind: str
+    n_values: tuple[int, ...] = ()
+    min_frequency: float = 1e-5
+    penalty: str = "P4"
+    series: tuple[str, ...] = ("flag",)
+    steps: tuple[float, ...] | None = None
+    seed: int | None = None
+
+    def __post_init__(self) -> None:
+        if self.kind not in PLOT_KINDS:
+            raise OptionError("kind", f"no figure {self.kind!r}: one of {', '.join(PLOT_KINDS)}")
+        if self.n_values and self.kind != "round":
+            raise OptionError("n_values", "numbers of faces choose the grains of the round figure")
+        if self.seed is not None and self.kind != "edge-errors":
+            raise OptionError("seed", "a seed is that of the edge flips of the edge-errors figure")
+        if self.penalty not in PENALTIES:
+            raise OptionError("penalty", f"no penalty {self.penalty!r}: one of {PENALTIES}")
+        if self.penalty != "P4" and self.kind != "penalty":
+            raise OptionError("penalty", "a penalty is the candidate of the penalty figure")
+        if not 0 <= self.min_frequency <= 1:
+            raise OptionError("min_frequency", "a frequency goes from 0 to 1")
+        unknown = set(self.series) - {*CLASSES, *NAMED_SERIES}
+        if unknown:
+            raise OptionError("series", f"no series {sorted(unknown)[0]!r}")
+        if self.steps is not None and not all(map(_finite, self.steps)):
+            raise OptionError("steps", "a time step is a finite number")
+
+
 def _require_int(name: str, value: object, low: int, high: int, what: str) -> None:
     if isinstance(value, bool) or not isinstance(value, int) or not low <= value <= high:
         raise OptionError(name, f"{what} go from {low} to {high}, not {value!r}")
+
+
+def _finite(value: float) -> bool:
+    return value == value and abs(value) != float("inf")

@@ -8,6 +8,7 @@ import math
 
 import pandas as pd
 
+from grainclass.errors import OptionError
 from grainclass.summary import Summary
 
 TITLES = {
@@ -163,7 +164,7 @@ def render(summary: Summary, tables: tuple[str, ...], fmt: str) -> str | bytes:
     """
     if fmt == "parquet":
         if len(tables) != 1:
-            raise ValueError("parquet output holds one table: choose one with --table")
+            raise OptionError("format", "parquet output holds one table")
         buffer = io.BytesIO()
         summary.table(tables[0]).to_parquet(buffer, index=False)
         return buffer.getvalue()

@@ -24,6 +24,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from grainclass.batch import GrainBatch, offsets_from_counts
+from grainclass.box import Box, Points
 from grainclass.errors import DataError, OptionError, TessellationError
 from grainclass.options import DEFAULT_CHUNK_SIZE
 from grainclass.vocabulary import plural
@@ -36,51 +37,6 @@ WALL = 4  # a face on a wall of the box: the cell is cut by a side that is not p
 
 SAFETY = 1e-5  # points closer than this (in the scaled box) are refused: Voro++ cannot tell them
 # apart reliably (its tolerances are relative to the box: about 1e-12 of a side in distance)
-
-
-@dataclass(frozen=True)
-class Box:
-    """A box, ``low[a] <= x[a] < high[a]``, periodic or walled per axis; with ``tilt`` (xy,
-    xz, yz, as LAMMPS writes them) the triclinic box from ``low`` with edges (lx, 0, 0),
-    (xy, ly, 0) and (xz, yz, lz), periodic on every side (Voro++ tessellates no other)."""
-
-    low: tuple[float, float, float]
-    high: tuple[float, float, float]
-    periodic: tuple[bool, bool, bool] = (True, True, True)
-    tilt: tuple[float, float, float] | None = None
-
-    @property
-    def matrix(self) -> np.ndarray:
-        """The edges of the box as the columns of a 3 x 3 matrix."""
-        lx, ly, lz = self.lengths
-        xy, xz, yz = self.tilt or (0.0, 0.0, 0.0)
-        return np.array([[lx, xy, xz], [0.0, ly, yz], [0.0, 0.0, lz]])
-
-    def fractions(self, xyz: np.ndarray) -> np.ndarray:
-        """Points as fractions of the box's edges from ``low`` (0 to 1 inside)."""
-        return np.linalg.solve(self.matrix, (xyz - np.asarray(self.low)).T).T
-
-    @classmethod
-    def cube(cls, side: float, periodic: tuple[bool, bool, bool] = (True, True, True)) -> Box:
-        """The cube ``[0, side)^3``."""
-        return cls((0.0, 0.0, 0.0), (side, side, side), periodic)
-
-    @property
-    def lengths(self) -> np.ndarray:
-        return np.subtract(self.high, self.low, dtype=np.float64)
-
-    @property
-    def volume(self) -> float:
-        return float(np.prod(self.lengths))
-
-    def describe(self) -> str:
-        """``[0, 1] x [0, 2] x [0, 1], periodic in x, y`` and the like."""
-        sides = " x ".join(f"[{a:g}, {b:g}]" for a, b in zip(self.low, self.high, strict=True))
-        axes = "".join(a for a, p in zip("xyz", self.periodic, strict=True) if p)
-        tilted = (
-            f" tilted by xy, xz, yz = {', '.join(f'{t:g}' for t in self.tilt)}" if self.tilt else ""
-        )
-        return f"{sides}{tilted}, " + (f"periodic in {', '.join(axes)}" if axes else "walled")
 
 
 @dataclass
@@ -116,30 +72,6 @@ class VoronoiReport:
         if abs(self.volume - box_volume) > 1e-9 * box_volume:
             found.append(f"the cells' volume is {self.volume:.12g}, the box's {box_volume:.12g}")
         return found
-
-
-@dataclass
-class Points:
-    """Points to tessellate, as read from a file (``grainclass.readers.points``) or made here.
-
-    ``ids`` are the points' own ids (the grains' ``grain_id``); ``locations`` where each point
-    is in its input (a line number, or a record number: ``location_kind``); ``radii`` (or None)
-    make the tessellation a Laguerre one.
-    """
-
-    xyz: np.ndarray  # float64[n, 3]
-    ids: np.ndarray  # int64[n] or str objects
-    locations: np.ndarray  # int64[n]
-    source: str = "<memory>"
-    location_kind: str = "record"
-    radii: np.ndarray | None = None
-    box: Box | None = None  # from the file, where it says
-
-    def where(self, i: int) -> str:
-        """``points.xyz:12`` (a line) or ``points.npy, record 12``: where point ``i`` is."""
-        if self.location_kind == "line":
-            return f"{self.source}:{self.locations[i]}"
-        return f"{self.source}, record {self.locations[i]}"
 
 
 def poisson_voronoi(

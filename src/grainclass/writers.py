@@ -13,6 +13,7 @@ import numpy as np
 import pyarrow as pa
 
 from grainclass.batch import GrainBatch, offsets_from_counts
+from grainclass.errors import OptionError
 
 PLANAR_CODE_HEADER = b">>planar_code<<"
 _UNSAFE = str.maketrans({"\t": " ", "\n": " ", "\r": " "})
@@ -133,4 +134,4 @@ def write_batch(batch: GrainBatch, fmt: str) -> bytes:
         return planar_code(batch)
     if fmt == "adjacency":
         return adjacency_text(batch)
-    raise ValueError(f"cannot write grains as {fmt!r}")
+    raise OptionError("format", f"grains are written as adjacency or planar_code, not {fmt!r}")

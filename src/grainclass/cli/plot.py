@@ -139,9 +139,9 @@ def plot_cmd(
     summarize reads, classified on the fly ('-' reads standard input). Needs the plot extra:
     pip install 'grainclass[plot]'.
     """
-    from grainclass.datasets import FigureRequest
+    from grainclass.options import FigureOptions
 
-    request = FigureRequest(
+    request = FigureOptions(
         kind,
         n_values=n_values,
         min_frequency=min_frequency,

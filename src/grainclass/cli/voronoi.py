@@ -35,7 +35,7 @@ class BoxType(click.ParamType):
                 param,
                 ctx,
             )
-        from grainclass.voronoi import Box
+        from grainclass.box import Box
 
         return Box(tuple(numbers[0::2]), tuple(numbers[1::2]))
 

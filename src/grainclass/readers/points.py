@@ -22,8 +22,8 @@ from pathlib import Path
 
 import numpy as np
 
+from grainclass.box import Box, Points
 from grainclass.errors import InputError
-from grainclass.voronoi import Box, Points
 
 POINT_FORMATS = ("voro", "xyz", "lammps", "csv", "npy")
 RADIUS_NAMES = ("r", "radius")  # columns or properties read as radii unless one is named
