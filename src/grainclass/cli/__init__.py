@@ -17,7 +17,7 @@ from contextlib import suppress
 import click
 
 from grainclass import __version__
-from grainclass.cli import errors, output, signals
+from grainclass.cli import output, signals
 from grainclass.cli.census import census_cmd
 from grainclass.cli.classify import classify_cmd
 from grainclass.cli.exit_codes import GRAINS, ExitCode
@@ -31,9 +31,7 @@ from grainclass.cli.voronoi import voronoi_cmd
 __all__ = ["cli", "main"]
 
 
-@click.group(
-    cls=errors.Group, epilog=GRAINS, context_settings={"help_option_names": ["-h", "--help"]}
-)
+@click.group(epilog=GRAINS, context_settings={"help_option_names": ["-h", "--help"]})
 @click.version_option(__version__, prog_name="grainclass")
 def cli() -> None:
     """Classify the grains of 3D cellular microstructures by combinatorial type.

@@ -6,11 +6,11 @@ import sys
 
 import click
 
-from grainclass.cli import exit_codes, options, startup
+from grainclass.cli import errors, exit_codes, options, startup
 from grainclass.options import DEFAULT_CHUNK_SIZE, MAX_CHUNK_SIZE
 
 
-@click.command("census", epilog=exit_codes.CENSUS)
+@click.command("census", cls=errors.Command, epilog=exit_codes.CENSUS)
 @click.argument("n_values", nargs=-1, required=True, metavar="N...", callback=options.vertex_counts)
 @click.option(
     "-o",

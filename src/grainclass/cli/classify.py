@@ -7,7 +7,7 @@ import stat
 
 import click
 
-from grainclass.cli import exit_codes, options, startup
+from grainclass.cli import errors, exit_codes, options, startup
 from grainclass.options import ReadOptions
 from grainclass.vocabulary import STATUSES, plural
 
@@ -38,7 +38,7 @@ def _is_file_or_folder(path: str) -> bool:
     return stat.S_ISREG(mode) or stat.S_ISDIR(mode)
 
 
-@click.command("classify", epilog=exit_codes.GRAINS)
+@click.command("classify", cls=errors.Command, epilog=exit_codes.GRAINS)
 @click.argument("inputs", nargs=-1, required=True, metavar="INPUT...")
 @click.option(
     "-o",

@@ -52,8 +52,8 @@ def remedy(fix: Remedy) -> str:
     return f"try {setting}"
 
 
-class Group(click.Group):
-    """The command group: an error of the library that a command lets through ends it as a
+class Command(click.Command):
+    """A command of ``grainclass``: an error of the library that it lets through ends it as a
     click error, one line with its exit code (:func:`exit_code`); a usage error shows the
     command's usage too."""
 

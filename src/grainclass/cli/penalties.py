@@ -4,11 +4,11 @@ from __future__ import annotations
 
 import click
 
-from grainclass.cli import exit_codes, options, startup
+from grainclass.cli import errors, exit_codes, options, startup
 from grainclass.options import OutputOptions, ReadOptions
 
 
-@click.command("penalties", epilog=exit_codes.SUMMARY)
+@click.command("penalties", cls=errors.Command, epilog=exit_codes.SUMMARY)
 @click.argument("grains", nargs=-1, required=True, metavar="GRAINS...")
 @click.option(
     "--n",

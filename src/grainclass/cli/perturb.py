@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import click
 
-from grainclass.cli import exit_codes, options, startup
+from grainclass.cli import errors, exit_codes, options, startup
 from grainclass.options import ReadOptions
 from grainclass.vocabulary import STATUSES, plural
 
@@ -15,7 +15,7 @@ EPILOG = exit_codes.epilog(
 )
 
 
-@click.command("perturb", epilog=EPILOG)
+@click.command("perturb", cls=errors.Command, epilog=EPILOG)
 @click.argument("inputs", nargs=-1, required=True, metavar="INPUT...")
 @click.option(
     "--flips",

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import click
 
-from grainclass.cli import exit_codes, options, startup
+from grainclass.cli import errors, exit_codes, options, startup
 from grainclass.options import ReadOptions
 from grainclass.vocabulary import CLASSES, NAMED_SERIES, PENALTIES, PLOT_KINDS
 
@@ -36,7 +36,7 @@ def _times(ctx: click.Context, param: click.Parameter, value: str | None) -> lis
         raise click.BadParameter(f"expected numbers separated by commas, got {value!r}") from None
 
 
-@click.command("plot", epilog=EPILOG)
+@click.command("plot", cls=errors.Command, epilog=EPILOG)
 @click.argument("kind", type=click.Choice(PLOT_KINDS), metavar="KIND")
 @click.argument("inputs", nargs=-1, required=True, metavar="INPUT...")
 @click.option(

@@ -4,12 +4,12 @@ from __future__ import annotations
 
 import click
 
-from grainclass.cli import exit_codes, options, startup
+from grainclass.cli import errors, exit_codes, options, startup
 from grainclass.options import OutputOptions, ReadOptions
 from grainclass.vocabulary import ALL_TABLES, TABLES
 
 
-@click.command("summarize", epilog=exit_codes.SUMMARY)
+@click.command("summarize", cls=errors.Command, epilog=exit_codes.SUMMARY)
 @click.argument("grains", nargs=-1, required=True, metavar="GRAINS...")
 @click.option(
     "--table",

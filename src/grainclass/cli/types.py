@@ -6,12 +6,12 @@ from contextlib import nullcontext
 
 import click
 
-from grainclass.cli import exit_codes, options, startup
+from grainclass.cli import errors, exit_codes, options, startup
 from grainclass.options import OutputOptions, ReadOptions
 from grainclass.vocabulary import CLASSES
 
 
-@click.command("types", epilog=exit_codes.SUMMARY)
+@click.command("types", cls=errors.Command, epilog=exit_codes.SUMMARY)
 @click.argument("grains", nargs=-1, required=True, metavar="GRAINS...")
 @click.option("--top", type=click.IntRange(min=1), help="Only the K most frequent types.")
 @click.option("--n", "n_faces", type=click.IntRange(min=4), help="Only grains with N faces.")

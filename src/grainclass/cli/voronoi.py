@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import click
 
-from grainclass.cli import exit_codes, options, startup
+from grainclass.cli import errors, exit_codes, options, startup
 from grainclass.cli.progress import Progress
 from grainclass.vocabulary import plural
 
@@ -50,7 +50,7 @@ def periodic_axes(ctx: click.Context, param: click.Parameter, value: str | None)
     return tuple(axis in axes for axis in "xyz")
 
 
-@click.command("voronoi", epilog=exit_codes.VORONOI)
+@click.command("voronoi", cls=errors.Command, epilog=exit_codes.VORONOI)
 @click.argument("n_seeds", type=click.IntRange(min=1), metavar="[N]", required=False)
 @click.option(
     "--points",
