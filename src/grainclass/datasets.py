@@ -23,7 +23,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, TypeVar
 
 from grainclass.errors import DataError, OptionError
-from grainclass.options import FigureOptions, ReadOptions
+from grainclass.options import FigureOptions, ReadOptions, require_choice
 from grainclass.vocabulary import CLASSES
 
 if TYPE_CHECKING:
@@ -191,8 +191,8 @@ def type_counts(
     from grainclass.schema import SPLITS
 
     options = ReadOptions.of(options, **settings)
-    if class_name is not None and class_name not in CLASSES:
-        raise OptionError("class_name", f"no class {class_name!r}: one of {', '.join(CLASSES)}")
+    if class_name is not None:
+        require_choice("class_name", class_name, CLASSES, "class")
     columns = [*COLUMNS, SPLITS] if options.belt_length else COLUMNS
     with _jobs(options):
         tables = watch(typed_tables(_paths(paths), columns, options))

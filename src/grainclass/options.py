@@ -93,12 +93,8 @@ class ReadOptions:
     jobs: int | None = None
 
     def __post_init__(self) -> None:
-        if self.input_format is not None and self.input_format not in INPUT_FORMATS:
-            raise OptionError(
-                "input_format",
-                f"unknown input format {self.input_format!r}; expected one of "
-                f"{', '.join(INPUT_FORMATS)}",
-            )
+        if self.input_format is not None:
+            require_choice("input_format", self.input_format, INPUT_FORMATS, "input format")
         _require_int("chunk_size", self.chunk_size, 1, MAX_CHUNK_SIZE, "grains per batch")
         if self.belt_length is not None:
             _require_int(
@@ -154,12 +150,8 @@ class OutputOptions:
     format: str | None = None
 
     def __post_init__(self) -> None:
-        if self.format is not None and self.format not in OUTPUT_FORMATS:
-            raise OptionError(
-                "format",
-                f"unknown output format {self.format!r}; expected one of "
-                f"{', '.join(OUTPUT_FORMATS)}",
-            )
+        if self.format is not None:
+            require_choice("format", self.format, OUTPUT_FORMATS, "output format")
         if not self.path:
             raise OptionError("output", "an empty path names no file")
 
@@ -188,23 +180,26 @@ class FigureOptions:
     seed: int | None = None
 
     def __post_init__(self) -> None:
-        if self.kind not in PLOT_KINDS:
-            raise OptionError("kind", f"no figure {self.kind!r}: one of {', '.join(PLOT_KINDS)}")
+        require_choice("kind", self.kind, PLOT_KINDS, "figure")
         if self.n_values and self.kind != "round":
             raise OptionError("n_values", "numbers of faces choose the grains of the round figure")
         if self.seed is not None and self.kind != "edge-errors":
             raise OptionError("seed", "a seed is that of the edge flips of the edge-errors figure")
-        if self.penalty not in PENALTIES:
-            raise OptionError("penalty", f"no penalty {self.penalty!r}: one of {PENALTIES}")
+        require_choice("penalty", self.penalty, PENALTIES, "penalty")
         if self.penalty != "P4" and self.kind != "penalty":
             raise OptionError("penalty", "a penalty is the candidate of the penalty figure")
         if not 0 <= self.min_frequency <= 1:
             raise OptionError("min_frequency", "a frequency goes from 0 to 1")
-        unknown = set(self.series) - {*CLASSES, *NAMED_SERIES}
-        if unknown:
-            raise OptionError("series", f"no series {sorted(unknown)[0]!r}")
+        for series in self.series:
+            require_choice("series", series, (*CLASSES, *NAMED_SERIES), "series")
         if self.steps is not None and not all(map(_finite, self.steps)):
             raise OptionError("steps", "a time step is a finite number")
+
+
+def require_choice(name: str, value: object, choices: tuple[str, ...], what: str) -> None:
+    """Raise :class:`OptionError` unless ``value`` is one of ``choices``."""
+    if value not in choices:
+        raise OptionError(name, f"no {what} {value!r}: one of {', '.join(choices)}")
 
 
 def _require_int(name: str, value: object, low: int, high: int, what: str) -> None:

@@ -99,6 +99,27 @@ def _deprecated(old: str, new: str) -> Callable[[click.Context, click.Parameter,
     return warn
 
 
+MAX_FACES = 2**31 - 1  # the n_faces column is int32
+MAX_SEED = 2**64 - 1
+
+
+def faces(help: str, multiple: bool = True, name: str = "n_values") -> Callable[[F], F]:
+    """``--n N``: grains with N faces (4 to 2^31 - 1), repeatable unless not ``multiple``."""
+    return click.option(
+        "--n",
+        name,
+        type=click.IntRange(4, MAX_FACES),
+        multiple=multiple,
+        metavar="N",
+        help=help,
+    )
+
+
+def seed(help: str) -> Callable[[F], F]:
+    """``--seed S``: a random seed, 0 to 2^64 - 1."""
+    return click.option("--seed", type=click.IntRange(0, MAX_SEED), metavar="S", help=help)
+
+
 def belt_length(
     help: str, default: int | None = None, deprecated_alias: bool = False
 ) -> Callable[[F], F]:

@@ -10,13 +10,7 @@ from grainclass.options import OutputOptions, ReadOptions
 
 @click.command("penalties", cls=errors.Command, epilog=exit_codes.SUMMARY)
 @click.argument("grains", nargs=-1, required=True, metavar="GRAINS...")
-@click.option(
-    "--n",
-    "n_values",
-    type=click.IntRange(min=4),
-    multiple=True,
-    help="Only grains with N faces (repeatable; default: every n with three flag types).",
-)
+@options.faces("Only grains with N faces (repeatable; default: every n with three flag types).")
 @options.table_output()
 @options.reading(
     types_default=None,

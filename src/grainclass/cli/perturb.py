@@ -30,11 +30,9 @@ EPILOG = exit_codes.epilog(
     help="Instead: every grain one admissible flip makes of each ok grain, with the fields "
     "from_grain, flipped_edge and new_edge (always adjacency text).",
 )
-@click.option(
-    "--seed",
-    type=click.IntRange(min=0, max=2**64 - 1),
-    help="Random seed, 0 to 2^64-1: the same seed gives the same grains, whatever --jobs and "
-    "--chunk-size (default: a new one, reported on stderr).",
+@options.seed(
+    "Random seed, 0 to 2^64-1: the same seed gives the same grains, whatever --jobs and "
+    "--chunk-size (default: a new one, reported on stderr)."
 )
 @click.option(
     "-o",

@@ -61,13 +61,7 @@ def _times(ctx: click.Context, param: click.Parameter, value: str | None) -> lis
     callback=options.nonempty_path,
     help="Also write the numbers drawn, one row per point: dataset, series, x, y (and yerr).",
 )
-@click.option(
-    "--n",
-    "n_values",
-    type=click.IntRange(min=4),
-    multiple=True,
-    help="round: grains with N faces instead of all grains (repeatable).",
-)
+@options.faces("round: grains with N faces instead of all grains (repeatable).")
 @click.option(
     "--min-frequency",
     type=click.FloatRange(min=0, max=1),
@@ -95,11 +89,8 @@ def _times(ctx: click.Context, param: click.Parameter, value: str | None) -> lis
     metavar="T1,T2,...",
     help="evolution: the time of each input, in input order (default: the number in its name).",
 )
-@click.option(
-    "--seed",
-    type=click.IntRange(min=0, max=2**64 - 1),
-    help="edge-errors: the seed of the random edge flips, as grainclass perturb --seed "
-    "(default 0).",
+@options.seed(
+    "edge-errors: the seed of the random edge flips, as grainclass perturb --seed (default 0)."
 )
 @options.reading(
     types_default=None,

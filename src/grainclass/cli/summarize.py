@@ -17,13 +17,7 @@ from grainclass.vocabulary import ALL_TABLES, TABLES
     type=click.Choice(ALL_TABLES),
     help="Print only this table (default: classes, round and split).",
 )
-@click.option(
-    "--n",
-    "n_values",
-    type=click.IntRange(min=4),
-    multiple=True,
-    help="Add a round-table row for grains with N faces (repeatable).",
-)
+@options.faces("Add a round-table row for grains with N faces (repeatable).")
 @options.table_output()
 @options.reading(
     types_default=False,

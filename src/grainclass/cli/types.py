@@ -14,7 +14,7 @@ from grainclass.vocabulary import CLASSES
 @click.command("types", cls=errors.Command, epilog=exit_codes.SUMMARY)
 @click.argument("grains", nargs=-1, required=True, metavar="GRAINS...")
 @click.option("--top", type=click.IntRange(min=1), help="Only the K most frequent types.")
-@click.option("--n", "n_faces", type=click.IntRange(min=4), help="Only grains with N faces.")
+@options.faces("Only grains with N faces.", multiple=False, name="n_faces")
 @click.option(
     "--class", "class_name", type=click.Choice(CLASSES), help="Only grains of this class."
 )

@@ -71,11 +71,7 @@ def periodic_axes(ctx: click.Context, param: click.Parameter, value: str | None)
     help="The column (CSV, LAMMPS, extended XYZ, .npy fields) of the points' radii, which make "
     "the cells Laguerre cells (default: a column r or radius, if any).",
 )
-@click.option(
-    "--seed",
-    type=click.IntRange(min=0),
-    help="Random seed: the same seed gives the same grains.",
-)
+@options.seed("Random seed, 0 to 2^64-1: the same seed gives the same grains.")
 @click.option(
     "--box",
     type=BoxType(),
