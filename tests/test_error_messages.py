@@ -208,3 +208,52 @@ def test_every_command_words_library_errors_alike():
     from grainclass.cli.errors import Command
 
     assert all(isinstance(command, Command) for command in cli.commands.values())
+
+
+POINTS = {
+    "particles.dump": (
+        b"ITEM: TIMESTEP\n0\nITEM: NUMBER OF ATOMS\n2\nITEM: BOX BOUNDS pp pp pp\n0 1\n0 1\n0 1\n"
+        b"ITEM: ATOMS id type x y z\n1 1 0.1 0.2 0.3\n2 1 0.6 0.7 0.8\n",
+        "a LAMMPS dump of points",
+    ),
+    "particles.xyz": (
+        b'2\nLattice="1 0 0 0 1 0 0 0 1" Properties=species:S:1:pos:R:3\n'
+        b"Fe 0.1 0.2 0.3\nFe 0.6 0.7 0.8\n",
+        "an XYZ file of points",
+    ),
+    "particles.csv": (b"id,x,y,z\n1,0.1,0.2,0.3\n2,0.6,0.7,0.8\n", "a CSV table of points"),
+    "particles.txt": (b"1 0.1 0.2 0.3\n2 0.6 0.7 0.8\n", "Voro++'s input of points"),
+    "particles.npy": (b"\x93NUMPY\x01\x00v\x00{'descr': '<f8'", "a NumPy array of points"),
+}
+
+
+@pytest.mark.parametrize("name", sorted(POINTS))
+@pytest.mark.parametrize("command", ["classify", "summarize", "perturb"])
+def test_a_points_file_where_grains_are_read_says_what_it_is(command, name, tmp_path):
+    data, what = POINTS[name]
+    path = tmp_path / name
+    path.write_bytes(data)
+    args, outputs = _command_lines(command, path, tmp_path)
+    result = _run(args)
+    _assert_one_line_failure(args, result, outputs)
+    assert result.exit_code == 1
+    assert f"{what}, not grains: grainclass voronoi --points FILE" in result.stderr
+
+
+def test_output_that_is_an_input_is_refused_and_the_input_kept(tmp_path):
+    grains = tmp_path / "grains.txt"
+    shutil.copy(EXAMPLES / "polytopes.txt", grains)
+    link = tmp_path / "link.txt"
+    link.symlink_to(grains)
+    before = grains.read_bytes()
+    for args in (
+        ["classify", str(grains), "-o", str(grains)],
+        ["classify", str(grains), "-o", str(link)],
+        ["summarize", str(link), "-o", str(grains)],
+        ["perturb", str(grains), "--flips", "1", "-o", str(link)],
+    ):
+        result = _run(args)
+        _assert_one_line_failure(args, result, [])
+        assert result.exit_code == 1, args
+        assert "is also an input" in result.stderr
+        assert grains.read_bytes() == before

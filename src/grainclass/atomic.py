@@ -9,7 +9,7 @@ import signal
 import stat
 import sys
 import tempfile
-from collections.abc import Iterator
+from collections.abc import Iterable, Iterator
 from contextlib import contextmanager
 from typing import BinaryIO
 
@@ -21,6 +21,25 @@ _STOPS = {
 
 # Paths that name an open file descriptor of this process, whatever it is open on.
 _FD_ALIAS = re.compile(r"^/(dev/(stdout|stderr|fd/\d+)|proc/(self|\d+)/fd/\d+)$")
+
+
+def refuse_inputs(outputs: Iterable[str | None], inputs: Iterable[str]) -> None:
+    """Refuse an output that is one of the inputs (the same file, through links too): written,
+    it would replace what is being read.
+
+    Raises
+    ------
+    OutputError
+        Naming the output and the input it is.
+    """
+    existing = [p for p in inputs if p != "-" and os.path.isfile(p)]
+    for output in outputs:
+        if output is None or output == "-" or not os.path.isfile(output):
+            continue
+        for path in existing:
+            with contextlib.suppress(OSError):
+                if os.path.samefile(output, path):
+                    raise OutputError(f"{output}: is also an input ({path}); write elsewhere")
 
 
 @contextmanager

@@ -273,7 +273,26 @@ def round_k_frequencies(datasets: Sequence[Dataset]) -> pd.DataFrame:
 def figure_data(request: FigureOptions, datasets: Sequence[Dataset], label: str) -> pd.DataFrame:
     """The tidy table of the figure ``request.kind`` for ``datasets``; ``evolution`` takes them
     as the time steps of one data set, ``label``, at ``request.steps`` (else read from their
-    labels, the inputs' names, by :func:`steps_from_names`)."""
+    labels, the inputs' names, by :func:`steps_from_names`).
+
+    Raises
+    ------
+    DataError
+        When the data sets cannot give the figure, or give it no point to draw.
+    """
+    table = _figure_data(request, datasets, label)
+    if table.empty:
+        names = ", ".join(dict.fromkeys(d.label for d in datasets))
+        what = (
+            f"no flag type with a frequency of at least {request.min_frequency:g}"
+            if request.kind == "penalty"
+            else "no point"
+        )
+        raise DataError(f"{names}: {what} to draw in the {request.kind} figure")
+    return table
+
+
+def _figure_data(request: FigureOptions, datasets: Sequence[Dataset], label: str) -> pd.DataFrame:
     kind, n_values, steps = request.kind, request.n_values, request.steps
     if kind == "round":
         return round_levels(datasets, n_values)

@@ -39,6 +39,8 @@ _FREE_TEXT = frozenset({GRAIN_ID, schema.ERROR, schema.TREES, schema.WEINBERG})
 # Columns of words that the summaries count by: a word they do not know would be counted as
 # nothing, without a sign.
 _WORDS = {schema.STATUS: STATUSES, schema.FAMILY: FAMILIES, schema.CLASS: CLASSES}
+# Columns that every ok grain has a value in, whatever it was classified with.
+_OK_HAS = (schema.N_FACES, schema.N_TRIANGLES, schema.P_VECTOR, schema.FAMILY, schema.CLASS)
 
 
 class GrainTableWriter:
@@ -174,7 +176,38 @@ def _row_groups(path: str, source: object, columns: list[str], threads: bool) ->
             table = parquet.read_row_group(group, columns=present, use_threads=threads)
         except (OSError, pa.ArrowInvalid) as exc:
             raise InputError(path, f"row group {group} cannot be read ({exc})") from None
-        yield pa.table([_column(path, table, name) for name in columns], names=columns)
+        table = pa.table([_column(path, table, name) for name in columns], names=columns)
+        _require_values(path, group, table)
+        yield table
+
+
+def _require_values(path: str, group: int, table: pa.Table) -> None:
+    """Refuse a row group whose ``status`` has a null, or whose ok grains lack a value that
+    every ok grain has (a table edited by hand, or saved from another tool), or have fewer
+    than four faces: counted, such a grain would be counted as nothing, or fail a summary."""
+    from grainclass.errors import InputError
+
+    if schema.STATUS not in table.column_names:
+        return
+    status = table.column(schema.STATUS)
+    if status.null_count:
+        raise InputError(path, f"row group {group}: column status has a null")
+    ok = pc.equal(status, "ok")
+    for name in _OK_HAS:
+        if name not in table.column_names:
+            continue
+        missing = pc.and_(ok, pc.is_null(table.column(name)))
+        if pc.any(missing).as_py():
+            row = pc.index(missing, True).as_py()
+            raise InputError(path, f"row group {group}, row {row}: an ok grain without {name}")
+    if schema.N_FACES in table.column_names:
+        few = pc.and_(ok, pc.less(table.column(schema.N_FACES), 4))
+        if pc.any(few).as_py():
+            row = pc.index(few, True).as_py()
+            faces = table.column(schema.N_FACES)[row].as_py()
+            raise InputError(
+                path, f"row group {group}, row {row}: an ok grain of {faces} faces (n_faces)"
+            )
 
 
 def _column(path: str, table: pa.Table, name: str) -> pa.ChunkedArray | pa.Array:

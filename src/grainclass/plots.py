@@ -11,7 +11,7 @@ from __future__ import annotations
 import os
 from collections.abc import Iterator
 from contextlib import contextmanager
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, BinaryIO
 
 import numpy as np
 import pandas as pd
@@ -263,18 +263,15 @@ _DRAW = {
 _SIZES = {"classes": (12.0, 5.0)}
 
 
-def draw(kind: str, data: pd.DataFrame, path: str) -> None:
+def draw(kind: str, data: pd.DataFrame, sink: BinaryIO, fmt: str) -> None:
     """Draw the figure ``kind`` (one of :data:`grainclass.vocabulary.PLOT_KINDS`) from its tidy
-    table and write it to ``path`` (``.png``, ``.svg`` or ``.pdf``), whole or not at all.
+    table into ``sink``, as ``fmt`` (``png``, ``svg`` or ``pdf``: :func:`figure_format`).
 
     Raises
     ------
     MissingDependencyError
         Without matplotlib.
     """
-    from grainclass.atomic import atomic_output
-
-    fmt = figure_format(path)
     with _style() as plt:
         fig = plt.figure(figsize=_SIZES.get(kind, (6.0, 4.0)), layout="constrained")
         try:
@@ -284,7 +281,6 @@ def draw(kind: str, data: pd.DataFrame, path: str) -> None:
                 "svg": {"Date": None},
                 "pdf": {"CreationDate": None},
             }
-            with atomic_output(path, binary_stdout_ok=False) as sink:
-                fig.savefig(sink, format=fmt, metadata=metadata[fmt])
+            fig.savefig(sink, format=fmt, metadata=metadata[fmt])
         finally:
             plt.close(fig)

@@ -79,14 +79,14 @@ def classify_cmd(
     sniffed from the content; face-vertex loops must be named (--input-format loops). '-'
     reads standard input, e.g. `plantri 12 | grainclass classify -` (writes out.parquet).
     """
-    startup.begin(inputs, reading)
+    named = output is not None
+    output = output if named else default_output(inputs)
+    startup.begin(inputs, reading, [output])
     import dataclasses
 
     from grainclass.cli.output import refuse_parquet_on_terminal
     from grainclass.datasets import write_grains
 
-    named = output is not None
-    output = output if named else default_output(inputs)
     refuse_parquet_on_terminal(output)
     if with_belts and reading.belt_length is None:
         reading = dataclasses.replace(reading, belt_length=6)

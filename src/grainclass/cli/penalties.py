@@ -37,7 +37,7 @@ def penalties_cmd(
     Parquet tables classified with --belt-length L, or any input classify reads (classified
     now).
     """
-    startup.begin(grains, reading)
+    startup.begin(grains, reading, [output.path])
     from grainclass.atomic import atomic_output
     from grainclass.cli.output import refuse_parquet_on_terminal, write_all
     from grainclass.datasets import penalty_table

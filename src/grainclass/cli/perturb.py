@@ -68,7 +68,7 @@ def perturb_cmd(
         raise click.UsageError(
             "--all-flips makes every flip: it draws nothing, and needs no --seed"
         )
-    startup.begin(inputs, reading)
+    startup.begin(inputs, reading, [output])
     from grainclass.atomic import atomic_output
     from grainclass.cli.output import write_all
     from grainclass.perturb import Counts, new_seed, output_format, perturbed_batches

@@ -141,19 +141,25 @@ def plot_cmd(
         steps=None if times is None else tuple(times),
         seed=seed,
     )
-    startup.begin(inputs, reading)
+    startup.begin(inputs, reading, [output, data])
+    from contextlib import nullcontext
+
     from grainclass.atomic import atomic_output
     from grainclass.cli.output import write_all
     from grainclass.datasets import figure_table
-    from grainclass.plots import draw, require_matplotlib
+    from grainclass.plots import draw, figure_format, require_matplotlib
 
     require_matplotlib()
-    table = figure_table(list(inputs), request, labels, reading, startup.watcher(quiet))
-    table.attrs["penalty"] = penalty
-    draw(kind, table, output)
-    if data is not None:
-        with atomic_output(data) as sink:
-            write_all(sink, table.to_csv(index=False))
+    # Both outputs are opened before the work and appear together, or neither does.
+    with (
+        atomic_output(output) as figure,
+        atomic_output(data) if data is not None else nullcontext() as numbers,
+    ):
+        table = figure_table(list(inputs), request, labels, reading, startup.watcher(quiet))
+        table.attrs["penalty"] = penalty
+        draw(kind, table, figure, figure_format(output))
+        if numbers is not None:
+            write_all(numbers, table.to_csv(index=False))
     if not quiet:
         click.echo(
             f"grainclass: {kind} figure of {len(table)} points written to {output}", err=True

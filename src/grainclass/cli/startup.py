@@ -50,9 +50,12 @@ def read_ahead(inputs: Sequence[str], input_format: str) -> None:
         read_ahead_path(first)
 
 
-def begin(inputs: Sequence[str], reading: ReadOptions) -> None:
-    """What every command that reads grains does first: its inputs read ahead (see
-    :func:`read_ahead`) and its threads set."""
+def begin(inputs: Sequence[str], reading: ReadOptions, outputs: Sequence[str | None] = ()) -> None:
+    """What every command that reads grains does first: its outputs checked not to be any of
+    its inputs, its inputs read ahead (see :func:`read_ahead`) and its threads set."""
+    from grainclass.atomic import refuse_inputs
+
+    refuse_inputs(outputs, inputs)
     read_ahead(inputs, reading.input_format or "auto")
     if reading.jobs is not None:
         from grainclass.parallel import set_jobs

@@ -52,7 +52,7 @@ def summarize_cmd(
         )
     if reading.belt_length is not None and tables != ("split",):
         raise click.UsageError("--belt-length changes the split table: use it with --table split")
-    startup.begin(grains, reading)
+    startup.begin(grains, reading, [output.path])
     from grainclass.atomic import atomic_output
     from grainclass.cli.output import refuse_parquet_on_terminal, write_all
     from grainclass.datasets import summary_tables

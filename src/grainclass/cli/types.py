@@ -49,7 +49,7 @@ def types_cmd(
     per-grain Parquet tables or any input classify reads. Grains cut by a sample boundary are
     left out, as summarize leaves them.
     """
-    startup.begin(grains, reading)
+    startup.begin(grains, reading, [output.path, vorotop])
     from grainclass.atomic import atomic_output
     from grainclass.cli.output import refuse_parquet_on_terminal, write_all
     from grainclass.datasets import type_counts

@@ -128,7 +128,9 @@ def voronoi_cmd(
     if points_path is not None and seed is not None:
         raise click.UsageError("--seed goes with N random seeds, not with --points")
     from grainclass import voronoi
+    from grainclass.atomic import refuse_inputs
 
+    refuse_inputs([output], [points_path] if points_path else [])
     if jobs is not None:
         from grainclass.parallel import set_jobs
 

@@ -85,10 +85,50 @@ def not_grains(head: bytes, file_only: bool = False) -> str | None:
         )
     if head.startswith(b"PAR1"):
         return "a Parquet table, not grains: summarize and types read it, classify reads grains"
+    points = points_kind(head)
+    if points:
+        return f"{points}, not grains: grainclass voronoi --points FILE tessellates them"
     for magic, (compression, cat) in _COMPRESSED.items():
         if magic.match(head):
             how = f"{cat} FILE > NEW.fe" if file_only else f"{cat} FILE | grainclass ... -"
             return f"{compression}-compressed: decompress it first ({how})"
+    return None
+
+
+_NUMBER = rb"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?"
+_XYZ_ATOM = re.compile(rb"\S+(?:\s+" + _NUMBER + rb"){3}(?:\s.*)?")
+_VORO_POINT = re.compile(rb"\d+(?:\s+" + _NUMBER + rb"){3,4}")
+
+
+def points_kind(head: bytes) -> str | None:
+    """What kind of points file an input is, from its first bytes (the files
+    ``grainclass voronoi --points`` reads), or None: a LAMMPS dump, a NumPy array, (extended)
+    XYZ, a CSV table with x, y and z columns, or Voro++'s input of ``id x y z [r]`` lines.
+    Grains never look so: adjacency text has a ``;`` between faces, Voro++ output parentheses.
+
+    >>> points_kind(b"ITEM: TIMESTEP\\n0\\n"), points_kind(b"cube\\t1 2 3 4;0 4 5 2\\n")
+    ('a LAMMPS dump of points', None)
+    >>> points_kind(b"1 0.5 0.25 0.125\\n2 0.1 0.2 0.3\\n")
+    "Voro++'s input of points"
+    """
+    if head.startswith(b"\x93NUMPY"):
+        return "a NumPy array of points"
+    lines = [line.strip() for line in head.splitlines() if line.strip()]
+    if len(head) == SNIFF_BYTES and lines and not head.endswith(b"\n"):
+        lines.pop()  # cut short by the head
+    if not lines:
+        return None
+    if lines[0].startswith(b"ITEM:"):
+        return "a LAMMPS dump of points"
+    if re.fullmatch(rb"\d+", lines[0]) and len(lines) >= 3:
+        extended = re.search(rb"\b(Lattice|Properties)=", lines[1])
+        if extended or all(_XYZ_ATOM.fullmatch(line) for line in lines[2:]):
+            return "an XYZ file of points"
+    header = [field.strip().strip(b'"').lower() for field in lines[0].split(b",")]
+    if len(header) >= 3 and {b"x", b"y", b"z"} <= set(header):
+        return "a CSV table of points"
+    if all(_VORO_POINT.fullmatch(line) for line in lines) and any(b"." in x for x in lines):
+        return "Voro++'s input of points"
     return None
 
 

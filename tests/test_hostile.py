@@ -1,0 +1,98 @@
+"""Unusual inputs and usages that once ended in a traceback, a wrong exit code, silence or lost
+data: each now ends in one line and its documented exit code, with nothing half-written."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pyarrow as pa
+import pyarrow.parquet as pq
+import pytest
+from click.testing import CliRunner
+
+from grainclass.cli import cli
+
+ROOT = Path(__file__).resolve().parent.parent
+EXAMPLES = ROOT / "examples"
+TETRAHEDRON = "tet\t1 2 3;0 3 2;0 1 3;0 2 1\n"
+
+
+def _run(*args: object):
+    return CliRunner().invoke(cli, [str(a) for a in args])
+
+
+def _one_error_line(result) -> str:
+    errors = [line for line in result.stderr.splitlines() if line.startswith("Error: ")]
+    assert len(errors) == 1, result.stderr
+    assert "Traceback" not in result.stderr
+    return errors[0]
+
+
+@pytest.mark.parametrize(
+    "args",
+    [["penalty", "tet.txt"], ["penalty", str(EXAMPLES / "polytopes.txt"), "--min-frequency", "1"]],
+)
+def test_a_figure_with_nothing_to_draw_exits_1_and_writes_nothing(tmp_path, args):
+    (tmp_path / "tet.txt").write_text(TETRAHEDRON)
+    figure = tmp_path / "p.png"
+    args = [a if a != "tet.txt" else str(tmp_path / a) for a in args]
+    result = _run("plot", *args, "-o", figure)
+    assert result.exit_code == 1
+    assert "no flag type with a frequency of at least" in _one_error_line(result)
+    assert not figure.exists()
+
+
+def test_a_figure_whose_data_cannot_be_written_is_not_written_either(tmp_path):
+    figure = tmp_path / "round.png"
+    result = _run(
+        "plot",
+        "round",
+        EXAMPLES / "polytopes.txt",
+        "-o",
+        figure,
+        "--data",
+        tmp_path / "no" / "d.csv",
+    )
+    assert result.exit_code == 1
+    _one_error_line(result)
+    assert not figure.exists()
+
+
+@pytest.fixture(scope="module")
+def grains(tmp_path_factory) -> pa.Table:
+    path = tmp_path_factory.mktemp("table") / "grains.parquet"
+    assert _run("classify", EXAMPLES / "polytopes.txt", "-o", path, "-q").exit_code == 0
+    return pq.read_table(path)
+
+
+BROKEN = [
+    ("n_faces", None, "an ok grain without n_faces"),
+    ("class", None, "an ok grain without class"),
+    ("n_faces", -3, "an ok grain of -3 faces (n_faces)"),
+    ("status", None, "column status has a null"),
+]
+COMMANDS = [["summarize"], ["types"], ["plot", "classes"]]
+
+
+@pytest.mark.parametrize(
+    ("column", "values", "said", "command"),
+    [(*broken, command) for broken in BROKEN for command in COMMANDS]
+    + [("p_vector", None, "an ok grain without p_vector", ["types"])],  # only types reads it
+)
+def test_a_table_with_nulls_where_values_must_be_is_named(
+    grains, tmp_path, column, values, said, command
+):
+    field = grains.schema.field(column)
+    broken = grains.set_column(
+        grains.schema.get_field_index(column),
+        field,
+        pa.nulls(len(grains), field.type)
+        if values is None
+        else pa.array([values] * len(grains), field.type),
+    )
+    path = tmp_path / "broken.parquet"
+    pq.write_table(broken, path)
+    extra = ["-o", tmp_path / "f.png"] if command[0] == "plot" else []
+    result = _run(*command, path, *extra)
+    assert result.exit_code == 1
+    assert said in _one_error_line(result)
