@@ -90,6 +90,7 @@ def test_readme_exit_codes_are_those_of_exit_code():
     section = _section(README, "Exit codes")
     rows = re.findall(r"^\| (\d+) \|", section, re.MULTILINE)
     listed = [ExitCode.OK, ExitCode.FAILURE, ExitCode.USAGE, ExitCode.INTERRUPTED]
+    listed.append(ExitCode.BROKEN_PIPE)
     assert [int(code) for code in rows] == [int(code) for code in listed]
     for code in (ExitCode.HANGUP, ExitCode.TERMINATED):
         assert str(int(code)) in section

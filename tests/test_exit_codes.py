@@ -12,7 +12,7 @@ from grainclass.cli.exit_codes import ExitCode
 
 
 def test_exit_codes_follow_unix_habits():
-    assert [int(code) for code in ExitCode] == [0, 1, 2, 129, 130, 143]
+    assert [int(code) for code in ExitCode] == [0, 1, 2, 129, 130, 141, 143]
     assert ExitCode.stopped_by(signal.SIGINT) is ExitCode.INTERRUPTED
     assert ExitCode.stopped_by(signal.SIGTERM) == 143
     assert ExitCode.stopped_by(signal.SIGHUP) == 129
@@ -24,7 +24,7 @@ def test_every_epilog_lists_the_codes(command):
     assert result.exit_code == ExitCode.OK
     section = result.output.split("Exit codes:", 1)[1]
     codes = [line.split()[0] for line in section.splitlines() if line[:6].strip().isdigit()]
-    assert codes == ["0", "1", "2", "130"]
+    assert codes == ["0", "1", "2", "130", "141"]
     assert "129, 143: SIGHUP, SIGTERM" in " ".join(section.split())
 
 

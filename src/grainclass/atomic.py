@@ -57,6 +57,10 @@ def atomic_output(path: str, binary_stdout_ok: bool = True) -> Iterator[BinaryIO
     except a BrokenPipeError (the reader went away), which callers end quietly on.
     """
     if path == "-":
+        from grainclass.pipes import CLOSED_STANDARD_STREAMS
+
+        if "stdout" in CLOSED_STANDARD_STREAMS:
+            raise OutputError("standard output is closed: write to a file instead")
         if not binary_stdout_ok and sys.stdout.isatty():
             raise OutputError("refusing to write binary output to a terminal; use -o FILE")
         with _as_output_error("standard output"):

@@ -26,6 +26,32 @@ SHORT_READ_BYTES = 1 << 16
 GATHER_SECONDS = 0.002
 
 
+CLOSED_STANDARD_STREAMS: set[str] = set()
+"""The standard streams (``stdin``, ``stdout``, ``stderr``) that the process started with
+closed (``<&-``, ``>&-``, ``2>&-``): see :func:`open_closed_standard_streams`."""
+
+
+def open_closed_standard_streams() -> None:
+    """Put ``/dev/null`` where a standard stream's descriptor is closed, and a Python stream on
+    it, so that nothing else the process opens takes descriptor 0, 1 or 2 and no write to
+    standard error fails; :data:`CLOSED_STANDARD_STREAMS` remembers which were closed, so that
+    reading standard input or writing standard output there is an error, not a silence."""
+    import sys
+
+    for fd, name in ((0, "stdin"), (1, "stdout"), (2, "stderr")):
+        try:
+            os.fstat(fd)
+            continue
+        except OSError:
+            pass
+        null = os.open(os.devnull, os.O_RDWR)
+        if null != fd:
+            os.dup2(null, fd)
+            os.close(null)
+        setattr(sys, name, open(fd, "r" if fd == 0 else "w", closefd=False))  # noqa: SIM115
+        CLOSED_STANDARD_STREAMS.add(name)
+
+
 def is_pipe(stream: BinaryIO) -> bool:
     """True if ``stream`` reads from a pipe or FIFO."""
     try:

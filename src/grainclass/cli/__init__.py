@@ -27,6 +27,7 @@ from grainclass.cli.plot import plot_cmd
 from grainclass.cli.summarize import summarize_cmd
 from grainclass.cli.types import types_cmd
 from grainclass.cli.voronoi import voronoi_cmd
+from grainclass.pipes import open_closed_standard_streams
 
 __all__ = ["cli", "main"]
 
@@ -73,6 +74,7 @@ def main() -> None:
     # numpy's OpenBLAS would start a spinning thread per core, taking CPU from a producer such
     # as plantri in the same pipe; grainclass multiplies no matrices.
     os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+    open_closed_standard_streams()
     warnings.showwarning = _show_warning
     signals.catch_stops()
     stopped = False

@@ -23,7 +23,7 @@ from grainclass.options import DEFAULT_CHUNK_SIZE, MAX_CHUNK_SIZE
 )
 @click.option(
     "--parts",
-    type=click.IntRange(min=1),
+    type=click.IntRange(1, 1_000_000),
     default=8,
     show_default=True,
     help="Tasks per N (plantri's res/mod); a rerun must give the same number to resume.",
@@ -35,8 +35,9 @@ from grainclass.options import DEFAULT_CHUNK_SIZE, MAX_CHUNK_SIZE
 )
 @click.option(
     "--workers",
-    type=click.IntRange(min=1),
-    help="Worker processes of the local cluster (default: one per CPU this process may use).",
+    type=click.IntRange(1, 1024),
+    help="Worker processes of the local cluster, 1 to 1024 (default: one per CPU this process "
+    "may use).",
 )
 @click.option(
     "--chunk-size",

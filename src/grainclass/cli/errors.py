@@ -7,6 +7,7 @@ import click
 
 from grainclass.cli.exit_codes import ExitCode
 from grainclass.cli.options import FLAGS
+from grainclass.cli.output import quiet_broken_pipe
 from grainclass.errors import GrainclassError, OptionError, Remedy
 
 # Every other GrainclassError is a failure of the run (1): an input, an output or the machine.
@@ -55,11 +56,14 @@ def remedy(fix: Remedy) -> str:
 class Command(click.Command):
     """A command of ``grainclass``: an error of the library that it lets through ends it as a
     click error, one line with its exit code (:func:`exit_code`); a usage error shows the
-    command's usage too."""
+    command's usage too. A reader of standard output that goes away ends it quietly with 141
+    (click would end it with 1, as a failure)."""
 
     def invoke(self, ctx: click.Context) -> object:
         try:
             return super().invoke(ctx)
+        except BrokenPipeError:
+            raise click.exceptions.Exit(quiet_broken_pipe()) from None
         except GrainclassError as exc:
             if exit_code(exc) == ExitCode.USAGE:
                 raise click.UsageError(message(exc), ctx) from None

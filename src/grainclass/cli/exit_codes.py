@@ -14,6 +14,7 @@ class ExitCode(IntEnum):
     USAGE = 2
     HANGUP = 128 + signal.SIGHUP
     INTERRUPTED = 128 + signal.SIGINT
+    BROKEN_PIPE = 128 + signal.SIGPIPE
     TERMINATED = 128 + signal.SIGTERM
 
     @classmethod
@@ -34,6 +35,11 @@ def epilog(
             ExitCode.INTERRUPTED,
             f"interrupted: Ctrl-C ({ExitCode.HANGUP:d}, {ExitCode.TERMINATED:d}: SIGHUP, "
             f"SIGTERM); {interrupted}",
+        ),
+        (
+            ExitCode.BROKEN_PIPE,
+            "the reader of standard output went away (`| head`): the command stops quietly, as "
+            "cat does",
         ),
     ]
     return "\b\nExit codes:\n" + "".join(_row(code, meaning) for code, meaning in rows)

@@ -21,11 +21,12 @@ def write_all(sink: BinaryIO, data: str | bytes) -> None:
 
 
 def quiet_broken_pipe() -> ExitCode:
-    """The reader of our output went away (``| head``): stop quietly, as Unix tools do; what is
+    """The reader of our output went away (``| head``): stop quietly with 141, as a Unix tool
+    killed by SIGPIPE does (Python ignores the signal, so the write fails instead); what is
     still buffered for standard output goes nowhere."""
     devnull = os.open(os.devnull, os.O_WRONLY)
     os.dup2(devnull, sys.stdout.fileno())
-    return ExitCode.FAILURE
+    return ExitCode.BROKEN_PIPE
 
 
 def refuse_parquet_on_terminal(path: str) -> None:

@@ -19,7 +19,7 @@ EPILOG = exit_codes.epilog(
 @click.argument("inputs", nargs=-1, required=True, metavar="INPUT...")
 @click.option(
     "--flips",
-    type=click.IntRange(min=0),
+    type=click.IntRange(0, 2**63 - 1),
     metavar="K",
     help="Edge flips per ok grain, one after another, each drawn uniformly among the edges "
     "admissible then (the paper's edge errors per grain, EEPG).",

@@ -13,7 +13,9 @@ from grainclass.vocabulary import CLASSES
 
 @click.command("types", cls=errors.Command, epilog=exit_codes.SUMMARY)
 @click.argument("grains", nargs=-1, required=True, metavar="GRAINS...")
-@click.option("--top", type=click.IntRange(min=1), help="Only the K most frequent types.")
+@click.option(
+    "--top", type=click.IntRange(1, 2**63 - 1), metavar="K", help="Only the K most frequent types."
+)
 @options.faces("Only grains with N faces.", multiple=False, name="n_faces")
 @click.option(
     "--class", "class_name", type=click.Choice(CLASSES), help="Only grains of this class."

@@ -51,7 +51,7 @@ def periodic_axes(ctx: click.Context, param: click.Parameter, value: str | None)
 
 
 @click.command("voronoi", cls=errors.Command, epilog=exit_codes.VORONOI)
-@click.argument("n_seeds", type=click.IntRange(min=1), metavar="[N]", required=False)
+@click.argument("n_seeds", type=click.IntRange(1, 2**31 - 1), metavar="[N]", required=False)
 @click.option(
     "--points",
     "points_path",

@@ -14,7 +14,13 @@ from contextlib import contextmanager
 from typing import BinaryIO
 
 from grainclass.errors import InputError
-from grainclass.pipes import PIPE_BYTES, enlarge_pipe, reading_ahead, take_read_ahead
+from grainclass.pipes import (
+    CLOSED_STANDARD_STREAMS,
+    PIPE_BYTES,
+    enlarge_pipe,
+    reading_ahead,
+    take_read_ahead,
+)
 from grainclass.readers.sniffing import SNIFF_BYTES
 
 
@@ -57,6 +63,8 @@ def read_once(path: str) -> BinaryIO | None:
     file (or a path that is not there: its reader says so)."""
     global _stdin
     if path == "-":
+        if "stdin" in CLOSED_STANDARD_STREAMS:
+            raise InputError(path, "standard input is closed")
         # A replaced stdin (a test, an embedding program) is another stream: it is held here,
         # not known by its id, so that no new one can pass for it. One without peek() is
         # wrapped once, so that every reader sees the bytes another one peeked at; a pipe that
