@@ -23,6 +23,7 @@ INSTALL_VORO = (
 )
 STANDARD_PREFIXES = ("/usr", "/usr/local", "/opt/homebrew")
 LIBRARY_FILES = ("libvoro++.so", "libvoro++.dylib", "libvoro++.a")
+BUILDING = {"bdist_wheel", "editable_wheel", "build_ext", "build", "develop", "install"}
 
 
 @dataclass(frozen=True)
@@ -119,14 +120,19 @@ def main() -> None:
     from setuptools import setup
 
     voro = find_voro()
-    if voro is None:
-        print(
-            "grainclass: Voro++ not found, building without grainclass._voro (`grainclass "
-            f"voronoi` needs it): {INSTALL_VORO}, or set VORO_PREFIX",
-            file=sys.stderr,
-        )
-    else:
-        print(f"grainclass: Voro++ from {voro.include_dir} and {voro.library_dir}", file=sys.stderr)
+    # setup.py runs for the metadata too: what was found is said where the wheel is built.
+    if BUILDING.intersection(sys.argv):
+        if voro is None:
+            print(
+                "grainclass: Voro++ not found, building without grainclass._voro (`grainclass "
+                f"voronoi` needs it): {INSTALL_VORO}, or set VORO_PREFIX",
+                file=sys.stderr,
+            )
+        else:
+            print(
+                f"grainclass: Voro++ from {voro.include_dir} and {voro.library_dir}",
+                file=sys.stderr,
+            )
     setup(ext_modules=[] if voro is None else [voro_extension(voro)])
 
 
