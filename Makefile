@@ -66,16 +66,17 @@ figures: voro install
 
 # Voro++: its library and headers, which grainclass._voro is built against, and the voro++
 # program, which the tests compare the cells with. Where either is missing, root installs them
-# with apt-get; anyone else is told what to install.
+# with apt-get; anyone else, or a system without apt-get, is told what to install.
+HAS_VORO = $(PYTHON) -c 'import setup, sys; sys.exit(setup.find_voro() is None)' && \
+	command -v voro++ >/dev/null
 voro:
-	@$(PYTHON) -c 'import setup, sys; sys.exit(setup.find_voro() is None)' && \
-		command -v voro++ >/dev/null || { \
+	@$(HAS_VORO) || { \
 		if [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null; then \
 			apt-get update -qq && apt-get install -y -qq voro++-dev voro++ >/dev/null; \
-		else \
+		fi; \
+		$(HAS_VORO) || { \
 			echo "Voro++ (library and program) not found: apt-get install voro++-dev voro++ (Debian/Ubuntu), brew install voro++ (Homebrew) or conda install -c conda-forge voro (conda)" >&2; \
-			exit 1; \
-		fi; }
+			exit 1; }; }
 
 test: voro install
 	$(BIN)/python -m pytest
