@@ -3,6 +3,9 @@ PYTHON ?= python3
 VENV ?= .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed-stamp
+# Where setup.py finds Voro++ (None: nowhere), rewritten only when that changes: Voro++
+# installed, moved or removed since the last install rebuilds grainclass._voro.
+VORO_FOUND := $(VENV)/.voro-found
 KERNELS := $(wildcard src/grainclass/_kernels/*.py) src/grainclass/_numba.py
 KERNELS_STAMP := build/.kernels-stamp
 
@@ -11,11 +14,16 @@ FIGURE_SEEDS ?= 100000
 # One time step of a grain-growth simulation, one Surface Evolver file per grain.
 GRAIN_GROWTH ?= tests/data/evolver/grain3d
 
-.PHONY: all install voro-program demo figures test test-nojit test-lowest lint bench bench-prisms fuzz reproduce-enumeration reproduce-voronoi reproduce-census bench-census clean
+.PHONY: all install voro FORCE demo figures test test-nojit test-lowest lint bench bench-prisms fuzz reproduce-enumeration reproduce-voronoi reproduce-census bench-census clean
 
 all: lint test
 
-$(STAMP): pyproject.toml setup.py src/grainclass/_voro.cpp
+$(VORO_FOUND): FORCE
+	@mkdir -p $(VENV)
+	@found="$$($(PYTHON) -c 'import setup; print(setup.find_voro())')" || exit 1; \
+		[ "$$found" = "$$(cat $@ 2>/dev/null)" ] || echo "$$found" > $@
+
+$(STAMP): pyproject.toml setup.py src/grainclass/_voro.cpp $(VORO_FOUND)
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --disable-pip-version-check -e '.[test]'
 	# plantri, shipped inside passagemath-plantri's package, beside the venv's other commands.
@@ -33,7 +41,7 @@ $(KERNELS_STAMP): $(KERNELS)
 
 install: $(STAMP) $(KERNELS_STAMP)
 
-demo: install
+demo: voro install
 	@mkdir -p build
 	$(BIN)/grainclass classify examples/polytopes.txt examples/plantri-10.pc -o build/demo.parquet
 	$(BIN)/grainclass summarize build/demo.parquet --n 10
@@ -41,7 +49,7 @@ demo: install
 # Every kind of `grainclass plot` for a fresh Poisson-Voronoi data set (edge-errors: perturbed
 # with seed 1), and the evolution kind for the bundled grain-growth grains, into build/figures/
 # (PNG, and the numbers drawn as CSV).
-figures: install
+figures: voro install
 	@mkdir -p build/figures
 	$(BIN)/grainclass voronoi $(FIGURE_SEEDS) --seed 1 -o build/figures/pv.txt -q
 	$(BIN)/grainclass classify build/figures/pv.txt -o build/figures/pv.parquet -q
@@ -56,17 +64,21 @@ figures: install
 		-o build/figures/evolution.png --data build/figures/evolution.csv
 	@ls -l build/figures
 
-# The voro++ program, which the tests compare the cells with: installed under CI (as root) where
-# it is missing; elsewhere those tests skip and say why.
-voro-program:
-	@command -v voro++ >/dev/null || { \
-		if [ "$${CI:-}" = true ] && [ "$$(id -u)" = 0 ]; then \
-			apt-get update -qq && apt-get install -y -qq voro++ >/dev/null; \
-		else \
-			echo "voro++ not found: the tests against it will skip (as root: apt-get install voro++)"; \
-		fi; }
+# Voro++: its library and headers, which grainclass._voro is built against, and the voro++
+# program, which the tests compare the cells with. Where either is missing, root installs them
+# with apt-get; anyone else, or a system without apt-get, is told what to install.
+HAS_VORO = $(PYTHON) -c 'import setup, sys; sys.exit(setup.find_voro() is None)' && \
+	command -v voro++ >/dev/null
+voro:
+	@$(HAS_VORO) || { \
+		if [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null; then \
+			apt-get update -qq && apt-get install -y -qq voro++-dev voro++ >/dev/null; \
+		fi; \
+		$(HAS_VORO) || { \
+			echo "Voro++ (library and program) not found: apt-get install voro++-dev voro++ (Debian/Ubuntu), brew install voro++ (Homebrew) or conda install -c conda-forge voro (conda)" >&2; \
+			exit 1; }; }
 
-test: install voro-program
+test: voro install
 	$(BIN)/python -m pytest
 
 # Coverage-style run of the kernels as plain Python (slow): catches code that only works jitted.
@@ -75,7 +87,7 @@ test-nojit: install
 
 # The whole suite against the lowest versions pyproject.toml allows, in a venv of its own
 # (build/lowest), so that its ranges are ranges that were tested.
-test-lowest: $(KERNELS_STAMP)
+test-lowest: voro $(KERNELS_STAMP)
 	test -x build/lowest/bin/python || $(PYTHON) -m venv build/lowest
 	build/lowest/bin/python -m pip install --quiet --disable-pip-version-check -c lowest-dependencies.txt -e '.[test]'
 	NUMBA_CACHE_DIR=build/lowest-numba-cache build/lowest/bin/python -m pytest -q -p no:cacheprovider
@@ -86,7 +98,7 @@ lint: install
 	$(BIN)/python -m ruff format --check src tests scripts benchmarks
 
 # Speed and memory, measured in one run (plantri n = 14, 15, 16, three rounds; about fifteen minutes).
-bench: install
+bench: voro install
 	$(BIN)/python benchmarks/bench.py
 
 # One giant grain: the k-gonal prism for k = 1,000, 4,000 and 20,000 (a minute or two).
@@ -108,7 +120,7 @@ reproduce-enumeration: install
 	$(BIN)/python scripts/reproduce_enumeration.py
 
 # A fresh V-268402-like Poisson-Voronoi data set against the paper's V tables (a few minutes).
-reproduce-voronoi: install
+reproduce-voronoi: voro install
 	$(BIN)/python scripts/reproduce_voronoi.py
 
 # Every triangulation with n = 4..17 vertices on a local Dask cluster, checked against plantri

@@ -21,7 +21,7 @@ KEYS = ["grain_id", "n_faces", "p_vector", "weinberg", "symmetry", "boundary"]
 needs_voro = pytest.mark.skipif(
     shutil.which("voro++") is None,
     reason="the voro++ program is not installed (Debian's voro++ package; make test installs it "
-    "as root under CI=true)",
+    "as root)",
 )
 
 

@@ -63,9 +63,6 @@ struct Cells {
 // the sums are theirs, in their order).
 class FlatCell : public voro::voronoicell_neighbor {
   public:
-    template <class Container>
-    explicit FlatCell(Container &con) : voro::voronoicell_neighbor(con) {}
-
     // Appends per face its corner count and corners to ``loops`` and the point behind it to
     // ``neighbors``; sets the volume and the surface area. False if an edge was not walked (the
     // edges do not close into faces).
@@ -74,9 +71,9 @@ class FlatCell : public voro::voronoicell_neighbor {
         loops.clear();
         neighbors.clear();
         double vol = 0.0, twice_area = 0.0;
-        const double *q = pts;  // corners relative to the point, doubled, four numbers each
+        const double *q = pts;  // corners relative to the point, doubled, three numbers each
         for (int i = 1; i < p; ++i) {
-            const double ux = q[0] - q[4 * i], uy = q[1] - q[4 * i + 1], uz = q[2] - q[4 * i + 2];
+            const double ux = q[0] - q[3 * i], uy = q[1] - q[3 * i + 1], uz = q[2] - q[3 * i + 2];
             for (int j = 0; j < nu[i]; ++j) {
                 int k = ed[i][j];
                 if (k < 0) continue;
@@ -86,7 +83,7 @@ class FlatCell : public voro::voronoicell_neighbor {
                 loops.push_back(i);
                 ed[i][j] = -1 - k;
                 int l = cycle_up(ed[i][nu[i] + j], k);
-                double vx = q[4 * k] - q[0], vy = q[4 * k + 1] - q[1], vz = q[4 * k + 2] - q[2];
+                double vx = q[3 * k] - q[0], vy = q[3 * k + 1] - q[1], vz = q[3 * k + 2] - q[2];
                 int m;
                 do {
                     loops.push_back(k);
@@ -94,15 +91,15 @@ class FlatCell : public voro::voronoicell_neighbor {
                     ed[k][l] = -1 - m;
                     const int n = cycle_up(ed[k][nu[k] + l], m);
                     if (m != i) {
-                        const double wx = q[4 * m] - q[0], wy = q[4 * m + 1] - q[1],
-                                     wz = q[4 * m + 2] - q[2];
+                        const double wx = q[3 * m] - q[0], wy = q[3 * m + 1] - q[1],
+                                     wz = q[3 * m + 2] - q[2];
                         vol += ux * vy * wz + uy * vz * wx + uz * vx * wy - uz * vy * wx -
                                uy * vx * wz - ux * vz * wy;
                         // The triangle (i, k, m) of the fan from corner i.
-                        const double ax = q[4 * k] - q[4 * i], ay = q[4 * k + 1] - q[4 * i + 1],
-                                     az = q[4 * k + 2] - q[4 * i + 2];
-                        const double bx = q[4 * m] - q[4 * i], by = q[4 * m + 1] - q[4 * i + 1],
-                                     bz = q[4 * m + 2] - q[4 * i + 2];
+                        const double ax = q[3 * k] - q[3 * i], ay = q[3 * k + 1] - q[3 * i + 1],
+                                     az = q[3 * k + 2] - q[3 * i + 2];
+                        const double bx = q[3 * m] - q[3 * i], by = q[3 * m + 1] - q[3 * i + 1],
+                                     bz = q[3 * m + 2] - q[3 * i + 2];
                         const double cx = ay * bz - az * by, cy = az * bx - ax * bz,
                                      cz = ax * by - ay * bx;
                         twice_area += std::sqrt(cx * cx + cy * cy + cz * cz);
@@ -116,7 +113,7 @@ class FlatCell : public voro::voronoicell_neighbor {
                 loops[start] = static_cast<int>(loops.size() - start - 1);
             }
         }
-        volume = vol / 48.0;
+        volume = vol * (1 / 48.0);  // as Voro++ has it: not always vol / 48 to the last bit
         area = 0.125 * twice_area;
         bool whole = true;  // every edge walked: marked -1 - k; marked back as Voro++ does
         for (int i = 0; i < p; ++i) {
@@ -251,7 +248,7 @@ class Engine : public EngineBase {
         out.volume.reserve(count);
         out.area.reserve(count);
         out.flags.reserve(count);
-        FlatCell cell(con);
+        FlatCell cell;
         std::vector<int> neighbors, loops;
         double volume, area;
         std::vector<int32_t> face_of_edge;  // directed edge u -> v of a loop: its face

@@ -1,6 +1,8 @@
 """Voronoi and Laguerre (power) tessellations of points in a box, computed with Voro++.
 
-Voro++ is compiled into grainclass (``_voro.cpp`` over the sources in ``vendor/voro++``): a
+Voro++ is an installed library (Debian's ``voro++-dev``, Homebrew's or conda-forge's Voro++) that
+grainclass's extension ``_voro.cpp`` is built against; without it grainclass installs without
+the extension, and :func:`voro_engine` says what to install. A
 :class:`grainclass._voro.Tessellation` holds the points in one Voro++ container per thread and
 hands back the cells of a run of points as flat arrays (per face its number of edges, the face
 across each edge and the point behind it or a wall; per cell its volume, surface area and
@@ -9,8 +11,8 @@ flags), computed on every thread without the GIL. No Python object is made per c
 Cells are computed in the order of Voro++'s blocks, a chunk at a time, bottom of the box up:
 neighbouring cells are computed together, and memory holds one chunk's cells at a time.
 
-The points are scaled by a power of two (exact in floating point) to a box of volume about
-1000^3, and volumes and areas scaled back. Every tessellation is checked: each face seen from
+The points are scaled by a power of two (exact in floating point) to a mean cell volume of
+about 1, and volumes and areas scaled back. Every tessellation is checked: each face seen from
 both of its cells, the cells filling the box, and (reported) corners of three faces.
 """
 
@@ -25,10 +27,15 @@ import numpy as np
 
 from grainclass.batch import GrainBatch, offsets_from_counts
 from grainclass.box import Box, Points
-from grainclass.errors import DataError, OptionError, TessellationError
+from grainclass.errors import DataError, MissingDependencyError, OptionError, TessellationError
 from grainclass.options import DEFAULT_CHUNK_SIZE
 from grainclass.vocabulary import plural
 
+# Keep in step with setup.py's INSTALL_VORO.
+INSTALL_VORO = (
+    "apt-get install voro++-dev (Debian/Ubuntu), brew install voro++ (Homebrew) or "
+    "conda install -c conda-forge voro (conda)"
+)
 POINTS_PER_BLOCK = 5.0  # points per Voro++ search block, as Voro++'s documentation advises
 # Flags per cell from the engine (grainclass/_voro.cpp).
 BAD_CORNER = 1  # a corner not on exactly three faces
@@ -36,7 +43,7 @@ OPEN = 2  # an edge not on exactly two faces
 WALL = 4  # a face on a wall of the box: the cell is cut by a side that is not periodic
 
 SAFETY = 1e-5  # points closer than this (in the scaled box) are refused: Voro++ cannot tell them
-# apart reliably (its tolerances are relative to the box: about 1e-12 of a side in distance)
+# apart reliably (its tolerance is 1e-11 on squared lengths, about 3e-6 in distance)
 
 
 @dataclass
@@ -112,9 +119,12 @@ def poisson_voronoi(
     yield from tessellate(points, cube, chunk_size=chunk_size, report=report, ordered=True)
 
 
-def _scale(box: Box) -> float:
-    """A power of two that takes the box to a volume of about 1000^3."""
-    return 2.0 ** round(math.log2(1000.0 / box.volume ** (1 / 3)))
+def _scale(box: Box, n: int) -> float:
+    """A power of two that takes the mean cell of ``n`` points in ``box`` to a volume of about
+    1. Voro++'s tolerances are absolute (1e-11 on squared lengths), made for cells of about
+    that size: in much larger ones its rounding errors outgrow them, and points in degenerate
+    positions (a lattice) get cells that do not fit together."""
+    return 2.0 ** round(math.log2((n / box.volume) ** (1 / 3)))
 
 
 def _blocks(n: int, box: Box) -> np.ndarray:
@@ -158,7 +168,7 @@ def check_points(points: Points, box: Box) -> None:
         )
     if box.tilt is not None and not all(box.periodic):
         raise DataError(f"a tilted box must be periodic on every side: {box.describe()}")
-    close = _close_pair(box.fractions(xyz), box.matrix * _scale(box), box.periodic)
+    close = _close_pair(box.fractions(xyz), box.matrix * _scale(box, len(xyz)), box.periodic)
     if close is not None:
         i, j = sorted(close)
         same = np.array_equal(xyz[i], xyz[j])
@@ -167,11 +177,6 @@ def check_points(points: Points, box: Box) -> None:
             + ("is at the same place as" if same else "is closer than Voro++ can separate to")
             + f" point {points.ids[i]} ({points.where(i)})"
         )
-
-
-def _scaled_limits(box: Box) -> tuple[tuple[float, ...], tuple[float, ...]]:
-    scale = _scale(box)
-    return tuple(v * scale for v in box.low), tuple(v * scale for v in box.high)
 
 
 def _close_pair(
@@ -208,6 +213,19 @@ def _close_pair(
     return None
 
 
+def voro_engine():
+    """The compiled extension ``grainclass._voro``, which is built only where the Voro++ library
+    is installed when grainclass is; :class:`MissingDependencyError` where it cannot be loaded."""
+    try:
+        from grainclass import _voro
+    except ImportError:
+        raise MissingDependencyError(
+            "Voronoi tessellations need the Voro++ library, and grainclass was installed "
+            f"without it: {INSTALL_VORO}, then install grainclass again"
+        ) from None
+    return _voro
+
+
 def tessellate(
     points: Points,
     box: Box,
@@ -226,15 +244,15 @@ def tessellate(
     A point whose Laguerre cell is empty (hidden by its neighbours' radii) has no grain; its id
     goes to ``report.no_cell``.
     """
-    from grainclass import _voro
     from grainclass.parallel import get_jobs
 
+    _voro = voro_engine()
     report = report if report is not None else VoronoiReport()
     if not checked:
         check_points(points, box)
-    scale = _scale(box)
-    low, high = _scaled_limits(box)
     n = len(points.xyz)
+    scale = _scale(box, n)
+    low, high = tuple(v * scale for v in box.low), tuple(v * scale for v in box.high)
     xyz, tilt = points.xyz * scale, None
     # Voro++ places a point at low <= x < high; a point on the upper wall (a LAMMPS box shrunk
     # to its atoms has some) is kept by standing that wall 1e-12 of the side further out.

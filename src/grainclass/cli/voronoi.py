@@ -13,8 +13,8 @@ class BoxType(click.ParamType):
     """``L`` (the cube [0, L]) or ``XLO,XHI,YLO,YHI,ZLO,ZHI``."""
 
     name = "box"
-    # Volumes are computed in a box of volume about 1000^3 and scaled back, and summed: far
-    # beyond these bounds the factor or the sum leaves the range of a float.
+    # Volumes are computed with cells of volume about 1 and scaled back, and summed: far beyond
+    # these bounds the factor or the sum leaves the range of a float.
     SMALLEST, LARGEST = 1e-30, 1e30
 
     def convert(self, value, param, ctx):
