@@ -131,6 +131,7 @@ def voronoi_cmd(
     from grainclass.atomic import refuse_inputs
 
     refuse_inputs([output], [points_path] if points_path else [])
+    voronoi.voro_engine()  # installed without Voro++: say so before reading the points
     if jobs is not None:
         from grainclass.parallel import set_jobs
 
