@@ -6,8 +6,9 @@ spaces. ``volume``, ``area`` and ``boundary`` are read as in the adjacency forma
 are not kept.
 
 Two faces are adjacent where they share an edge (two consecutive corners); walking a face's loop
-gives its neighbours in cyclic order. A corner on only two faces (an edge split in two) does not
-start a new neighbour.
+gives its neighbours in cyclic order, in the loop's sense, taken as counter-clockwise seen from
+outside (what the sign of ``chirality`` is measured against). A corner on only two faces (an
+edge split in two) does not start a new neighbour.
 """
 
 from __future__ import annotations
@@ -70,14 +71,17 @@ class LoopText:
     face of neighbour ids), not number by number in Python.
 
     ``unreadable`` is the message for loops the kernel cannot read (a character other than
-    digits, blanks and ``;``, or an empty loop).
+    digits, blanks and ``;``, or an empty loop). Loops are read as counter-clockwise seen from
+    outside (what the sign of ``chirality`` is measured against); ``clockwise`` loops, as
+    Voro++ writes them, are turned round.
     """
 
-    def __init__(self, source: str, unreadable: str) -> None:
+    def __init__(self, source: str, unreadable: str, clockwise: bool = False) -> None:
         self._rows = _Rows(source, "line")
         self._texts: list[bytes] = []
         self._boundary: list[bool | None] = []
         self.unreadable = unreadable
+        self.clockwise = clockwise
 
     def __len__(self) -> int:
         return len(self._texts)
@@ -105,9 +109,13 @@ class LoopText:
         for g in np.flatnonzero(bad):
             self._rows.errors.setdefault(int(g), self.unreadable)
         told = any(flag is not None for flag in self._boundary)
+        loop_offsets = offsets_from_counts(loop_lengths)
+        if self.clockwise:  # each loop's corners from its last to its first
+            last = np.repeat(loop_offsets[:-1] + loop_offsets[1:] - 1, loop_lengths)
+            corners = corners[last - np.arange(len(corners))]
         return self._rows.batch(
             loop_counts,
-            offsets_from_counts(loop_lengths),
+            loop_offsets,
             corners.astype(np.int64),
             self._boundary if told else None,
         )
