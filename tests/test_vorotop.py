@@ -18,6 +18,7 @@ from grainclass.cli import cli
 DATA = Path(__file__).parent / "data" / "vorotop"
 POINTS = DATA / "poisson500"  # VoroTop's input: a LAMMPS dump, periodic unit cube
 VECTORS = DATA / "poisson500.vectors"  # VoroTop poisson500 -vt
+DISTRIBUTION = DATA / "poisson500.distribution"  # VoroTop poisson500 -d
 CELLS = DATA / "cells-1-40.vol"  # voro++ -p -c "%i %P %t", the cells of points 1 to 40
 
 
@@ -61,6 +62,31 @@ def test_voronoi_cells_of_the_points_are_vorotops(tmp_path):
     _invoke("voronoi", "--points", str(POINTS), "-o", str(tmp_path / "cells.txt"))
     _invoke("classify", str(tmp_path / "cells.txt"), "-o", str(tmp_path / "again.parquet"))
     assert _types(pq.read_table(tmp_path / "again.parquet")) == _vorotop_cells()
+
+
+def test_types_writes_what_vorotop_d_writes(tmp_path, monkeypatch):
+    # VoroTop's first line names the file it read, as named on its command line; grainclass's
+    # names the grains it read: given the same name, the files are the same byte for byte.
+    monkeypatch.chdir(tmp_path)
+    _invoke("voronoi", "--points", str(POINTS), "-o", "poisson500")
+    _invoke("types", "poisson500", "--vorotop", "poisson500.distribution", "-o", "types.csv")
+    assert Path("poisson500.distribution").read_bytes() == DISTRIBUTION.read_bytes()
+
+
+def test_types_names_the_grains_it_read_and_writes_the_rest_as_vorotop(tmp_path):
+    cells = tmp_path / "cells.parquet"
+    _invoke("voronoi", "--points", str(POINTS), "-o", str(cells))
+    out = tmp_path / "cells.distribution"
+    _invoke("types", str(cells), "--vorotop", str(out), "-o", str(tmp_path / "types.csv"))
+    ours, theirs = out.read_text().splitlines(), DISTRIBUTION.read_text().splitlines()
+    assert ours[0] == f"#\tDISTRIBUTION CREATED FROM {cells}"
+    assert ours[1:] == theirs[1:]
+    # What makes the order: 500 cells, a few types more than once, ties by the integers.
+    counts = [int(line.split("\t")[1]) for line in theirs[4:]]
+    assert counts[:6] == [3, 2, 2, 2, 2, 2]
+    assert set(counts[6:]) == {1}
+    as_strings = sorted(theirs[10:], key=lambda line: line.split("\t")[0])
+    assert as_strings != theirs[10:]  # label 10 sorts after 9, not after 1
 
 
 def _cells() -> list[tuple[str, np.ndarray, list[list[int]]]]:

@@ -23,7 +23,7 @@ from grainclass.vocabulary import CLASSES
     "--vorotop",
     metavar="FILE",
     callback=options.nonempty_path,
-    help="Also write VoroTop's .distribution file: (code) total left achiral right.",
+    help="Also write what VoroTop's -d writes (its .distribution file) for these grains.",
 )
 @options.include_boundary
 @options.belt_length
@@ -85,7 +85,7 @@ def types_cmd(
         except GrainclassError as exc:
             raise click.ClickException(str(exc)) from None
         if distribution is not None:
-            write_all(distribution, vorotop_distribution(table))
+            write_all(distribution, vorotop_distribution(table, grains))
         shown = table.head(top) if top else table
         shown = shown.drop(columns=["left", "achiral", "right"])
         title = f"{len(table)} types, most frequent first"
