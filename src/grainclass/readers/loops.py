@@ -109,15 +109,12 @@ class LoopText:
         for g in np.flatnonzero(bad):
             self._rows.errors.setdefault(int(g), self.unreadable)
         told = any(flag is not None for flag in self._boundary)
-        loop_offsets = offsets_from_counts(loop_lengths)
-        if self.clockwise:  # each loop's corners from its last to its first
-            last = np.repeat(loop_offsets[:-1] + loop_offsets[1:] - 1, loop_lengths)
-            corners = corners[last - np.arange(len(corners))]
         return self._rows.batch(
             loop_counts,
-            loop_offsets,
+            offsets_from_counts(loop_lengths),
             corners.astype(np.int64),
             self._boundary if told else None,
+            clockwise=self.clockwise,
         )
 
 
@@ -148,10 +145,12 @@ class _Rows:
         corners: np.ndarray,
         boundary: Sequence[bool | None] | None,
         face_labels: np.ndarray | None = None,
+        clockwise: bool = False,
     ) -> GrainBatch:
         """The batch, with each grain's ``face_counts[g]`` loops, loop k being
         ``corners[loop_offsets[k]:loop_offsets[k + 1]]`` (0 loops for a row with an error),
-        and loop k's id in the input ``face_labels[k]``, if given."""
+        and loop k's id in the input ``face_labels[k]``, if given; loops that turn
+        ``clockwise`` seen from outside give their neighbours the other way round."""
         from grainclass._kernels.loops import OPEN, PINCHED, _adjacency_from_loops
 
         face_offsets = offsets_from_counts(face_counts)
@@ -161,7 +160,7 @@ class _Rows:
         flags = np.zeros(len(self.ids), np.int8)
         bad = np.zeros((len(self.ids), 3), np.int64)
         _adjacency_from_loops(
-            face_offsets, loop_offsets, corners, nbr_offsets, neighbors, flags, bad
+            face_offsets, loop_offsets, corners, nbr_offsets, neighbors, flags, bad, clockwise
         )
         neighbors = neighbors[: nbr_offsets[-1]]
         not_sphere = (flags & (OPEN | PINCHED)) != 0
