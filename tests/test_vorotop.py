@@ -97,7 +97,7 @@ def _cells() -> list[tuple[str, np.ndarray, list[list[int]]]]:
         groups = re.findall(r"\(([^)]*)\)", rest)
         positions = np.array([[float(x) for x in g.split(",")] for g in groups if "." in g])
         loops = [[int(v) for v in g.split(",")] for g in groups if "." not in g]
-        assert len(positions) + len(loops) == len(groups)
+        assert max(map(max, loops)) == len(positions) - 1  # no position read as a loop
         cells.append((cell_id, positions, loops))
     return cells
 
@@ -164,6 +164,7 @@ def test_neper_polyhedra_read_as_vorotop(tmp_path):
     # a negative id (Neper: a face's normal, right-handed along its loop, points out for +id).
     vertices, edges, faces, polyhedra = [], {}, [], []
     for cell_id, positions, loops in _cells():
+        assert _signed_volume(positions, loops) < 0
         base = len(vertices)
         vertices.extend(positions)
         ids = []
