@@ -85,7 +85,12 @@ def test_types_writes_vorotop_distribution(tmp_path):
         cli, ["types", *INPUTS, "--vorotop", str(out), "-o", str(tmp_path / "t.csv")]
     )
     assert result.exit_code == 0
-    lines = out.read_text().splitlines()
+    header, lines = out.read_text().splitlines()[:4], out.read_text().splitlines()[4:]
+    assert header[:3] == [
+        f"#\tDISTRIBUTION CREATED FROM {' '.join(INPUTS)}",
+        "#\tTotal particles sampled: 246",  # 233 triangulations and 13 examples
+        "#\tTotal Voronoi topologies observed: 245",
+    ]
     assert len(lines) == 245
     code, total, left, achiral, right = lines[0].split("\t")
     assert code.startswith("(1,2,3,4,5,1,")

@@ -3,8 +3,8 @@
 // A Tessellation holds the points in one Voro++ container per thread (Voro++'s containers keep
 // scratch state while they compute a cell, so threads do not share one). cells(indices)
 // computes the cells of those points on every thread at once, without the GIL, and hands back
-// per cell the faces across each edge of each face (the face adjacency, in the order of the
-// face's loop), the point behind each face (a negative number: the wall of a non-periodic
+// per cell the faces across each edge of each face (the face adjacency, counter-clockwise seen
+// from outside), the point behind each face (a negative number: the wall of a non-periodic
 // side), its volume, its surface area and flags.
 
 #include <pybind11/numpy.h>
@@ -279,11 +279,14 @@ class Engine : public EngineBase {
                     ++faces_at[u];
                 }
             }
+            // Voro++'s loops turn clockwise seen from outside (cycle_up is the next edge
+            // counter-clockwise at a corner, seen from outside): walked backwards, they give
+            // each face's neighbours counter-clockwise, as the Weinberg walks read them.
             f = 0;
             for (size_t j = 0; j < loops.size(); j += loops[j] + 1, ++f) {
                 const int length = loops[j];
                 out.loop_lengths.push_back(length);
-                for (int e = 0; e < length; ++e) {
+                for (int e = length - 1; e >= 0; --e) {
                     const int u = loops[j + 1 + e], v = loops[j + 1 + (e + 1) % length];
                     const int32_t other = face_of_edge[static_cast<size_t>(v) * corners + u];
                     if (other < 0 || other == f) flag |= OPEN;
@@ -423,5 +426,5 @@ PYBIND11_MODULE(_voro, m) {
              "face_counts, volume, area and flags (1: a corner not of three faces, 2: an edge not "
              "on two faces, 4: a face on a wall) per cell (0 faces: no cell), loop_lengths and "
              "neighbors (the point behind, negative for a wall) per face, adjacent (the face "
-             "across each edge, in loop order) per edge of a face.");
+             "across each edge, counter-clockwise seen from outside) per edge of a face.");
 }

@@ -2,7 +2,8 @@
 
 from __future__ import annotations
 
-from collections.abc import Iterable
+import itertools
+from collections.abc import Iterable, Sequence
 
 import numpy as np
 import pandas as pd
@@ -134,10 +135,66 @@ def _with_excluded(table: pd.DataFrame, excluded: int) -> pd.DataFrame:
     return table
 
 
-def vorotop_distribution(types: pd.DataFrame) -> str:
-    """VoroTop's ``.distribution`` layout: ``(code)<TAB>total<TAB>left<TAB>achiral<TAB>right``."""
+def vorotop_distribution(types: pd.DataFrame, sources: Sequence[str]) -> str:
+    r"""What VoroTop's ``-d`` writes (its ``.distribution`` file) for the types counted in
+    ``types``, from the inputs named ``sources``.
+
+    Parameters
+    ----------
+    types : pandas.DataFrame
+        A table of :func:`type_frequencies` (at least ``weinberg``, ``count`` and the counts by
+        chirality, ``left``, ``achiral``, ``right``).
+    sources : sequence of str
+        The inputs the types were counted from, as named to the program.
+
+    Returns
+    -------
+    str
+        VoroTop's four ``#`` lines: the inputs (VoroTop names its one input file), the grains
+        counted, the types, and the columns. Then a row per type,
+        ``(code)<TAB>total<TAB>left<TAB>achiral<TAB>right``, left counting chirality -1, by
+        count descending, then by the vector's integers in lexicographic order (VoroTop sorts
+        its codes as ``std::vector<int>``: label 10 after 9, not after 1).
+
+    Examples
+    --------
+    >>> cube = "(1,2,3,4,1,4,5,6,1,6,7,2,7,8,3,8,5,8,7,6,5,4,3,2,1)"
+    >>> types = pd.DataFrame(
+    ...     {"weinberg": [cube], "count": [2], "left": [0], "achiral": [2], "right": [0]}
+    ... )
+    >>> text = vorotop_distribution(types, ["cubes.txt"]).splitlines()
+    >>> text[0]
+    '#\tDISTRIBUTION CREATED FROM cubes.txt'
+    >>> text[1:3]
+    ['#\tTotal particles sampled: 2', '#\tTotal Voronoi topologies observed: 1']
+    >>> text[4]
+    '(1,2,3,4,1,4,5,6,1,6,7,2,7,8,3,8,5,8,7,6,5,4,3,2,1)\t2\t0\t2\t0'
+    """
+    codes = types[schema.WEINBERG].tolist()
+    counts = types[["count", "left", "achiral", "right"]].to_numpy(np.int64).tolist()
+    keys = _label_bytes(codes)
+    order = sorted(range(len(codes)), key=lambda i: (-counts[i][0], keys[i]))
     lines = [
-        f"{row.weinberg}\t{row.count}\t{row.left}\t{row.achiral}\t{row.right}"
-        for row in types.itertuples(index=False)
+        f"#\tDISTRIBUTION CREATED FROM {' '.join(sources)}",
+        f"#\tTotal particles sampled: {sum(row[0] for row in counts)}",
+        f"#\tTotal Voronoi topologies observed: {len(codes)}",
+        "#\tColumns indicate: Voronoi topology vector, total count, left-handed, non-chiral, "
+        "and right-handed types",
     ]
-    return "\n".join(lines) + ("\n" if lines else "")
+    lines += ["\t".join([codes[i], *map(str, counts[i])]) for i in order]
+    return "\n".join(lines) + "\n"
+
+
+def _label_bytes(codes: list[str], chunk: int = 4096) -> list[bytes]:
+    """Each vector ``(1,2,...)``'s labels as big-endian 32-bit integers: bytes that compare as
+    VoroTop compares its vectors, lexicographically by the integers, a prefix first. Parsed by
+    Arrow ``chunk`` vectors at a time (not label by label in Python, nor all at once: a split
+    of every vector would hold each label as a string)."""
+    keys: list[bytes] = []
+    for start in range(0, len(codes), chunk):
+        inner = pc.utf8_slice_codeunits(pa.array(codes[start : start + chunk], pa.string()), 1, -1)
+        labels = pc.cast(pc.split_pattern(inner, ","), pa.list_(pa.int32()))
+        data = labels.flatten().to_numpy().astype(">u4").tobytes()
+        ends = (labels.offsets.to_numpy() * 4).tolist()
+        keys += [data[a:b] for a, b in itertools.pairwise(ends)]
+    return keys

@@ -4,7 +4,7 @@ import pyarrow as pa
 
 from grainclass import __version__
 
-SCHEMA_VERSION = "4"
+SCHEMA_VERSION = "5"
 
 GRAIN_ID = "grain_id"
 SOURCE = "source"

@@ -105,12 +105,14 @@ def _clear(f0, f1, loop_offsets, corners, size, tables):
 
 @njit
 def _adjacency_from_loops(
-    face_offsets, loop_offsets, loop_corners, nbr_offsets, neighbors, flags, bad
+    face_offsets, loop_offsets, loop_corners, nbr_offsets, neighbors, flags, bad, clockwise
 ):
     """:func:`_grain_adjacency` for every grain g (faces ``face_offsets[g]:face_offsets[g+1]``),
     its corner ids (any integers) numbered 0..k-1 first. ``bad`` is int64[G, 3] (corner ids of
     a bad edge and the faces on it, or for PINCHED (0, 0, V - E + F)); ``neighbors`` has room
-    for one entry per loop corner.
+    for one entry per loop corner. Each face's neighbours come in its loop's sense, or the
+    other way round if ``clockwise`` (loops that turn clockwise seen from outside, as Voro++'s:
+    the lists then turn counter-clockwise, as every reader with geometry gives them).
 
     A closed surface whose V - E + F is not 2 is flagged PINCHED: two corners given one id (the
     surface touches itself there) leave a face adjacency that can pass for a simple grain's,
@@ -133,6 +135,13 @@ def _adjacency_from_loops(
         m, flags[g] = _grain_adjacency(
             f0, f1, loop_offsets, local, size, tables, nbr_offsets, neighbors, m, where
         )
+        if clockwise:
+            for f in range(f0, f1):
+                i, j = nbr_offsets[f], nbr_offsets[f + 1] - 1
+                while i < j:
+                    neighbors[i], neighbors[j] = neighbors[j], neighbors[i]
+                    i += 1
+                    j -= 1
         if where[0] >= 0:
             bad[g, 0], bad[g, 1], bad[g, 2] = (
                 loop_corners[where[0]],

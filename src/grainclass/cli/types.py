@@ -24,7 +24,7 @@ from grainclass.vocabulary import CLASSES
     "--vorotop",
     metavar="FILE",
     callback=options.nonempty_path,
-    help="Also write VoroTop's .distribution file: (code) total left achiral right.",
+    help="Also write what VoroTop's -d writes (its .distribution file) for these grains.",
 )
 @options.table_output()
 @options.reading(
@@ -68,7 +68,7 @@ def types_cmd(
         watch = startup.watcher(quiet)
         table = type_counts(list(grains), reading, watch, n_faces, class_name)
         if distribution is not None:
-            write_all(distribution, vorotop_distribution(table))
+            write_all(distribution, vorotop_distribution(table, grains))
         shown = table.head(top) if top else table
         shown = shown.drop(columns=["left", "achiral", "right"])
         title = f"{len(table)} types, most frequent first"

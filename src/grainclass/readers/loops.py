@@ -6,8 +6,9 @@ spaces. ``volume``, ``area`` and ``boundary`` are read as in the adjacency forma
 are not kept.
 
 Two faces are adjacent where they share an edge (two consecutive corners); walking a face's loop
-gives its neighbours in cyclic order. A corner on only two faces (an edge split in two) does not
-start a new neighbour.
+gives its neighbours in cyclic order, in the loop's sense, taken as counter-clockwise seen from
+outside (what the sign of ``chirality`` is measured against). A corner on only two faces (an
+edge split in two) does not start a new neighbour.
 """
 
 from __future__ import annotations
@@ -71,14 +72,17 @@ class LoopText:
     face of neighbour ids), not number by number in Python.
 
     ``unreadable`` is the message for loops the kernel cannot read (a character other than
-    digits, blanks and ``;``, or an empty loop).
+    digits, blanks and ``;``, or an empty loop). Loops are read as counter-clockwise seen from
+    outside (what the sign of ``chirality`` is measured against); ``clockwise`` loops, as
+    Voro++ writes them, are turned round.
     """
 
-    def __init__(self, source: str, unreadable: str) -> None:
+    def __init__(self, source: str, unreadable: str, clockwise: bool = False) -> None:
         self._rows = _Rows(source, "line")
         self._texts: list[bytes] = []
         self._boundary: list[bool | None] = []
         self.unreadable = unreadable
+        self.clockwise = clockwise
 
     def __len__(self) -> int:
         return len(self._texts)
@@ -111,6 +115,7 @@ class LoopText:
             offsets_from_counts(loop_lengths),
             corners.astype(np.int64),
             self._boundary if told else None,
+            clockwise=self.clockwise,
         )
 
 
@@ -141,10 +146,12 @@ class _Rows:
         corners: np.ndarray,
         boundary: Sequence[bool | None] | None,
         face_labels: np.ndarray | None = None,
+        clockwise: bool = False,
     ) -> GrainBatch:
         """The batch, with each grain's ``face_counts[g]`` loops, loop k being
         ``corners[loop_offsets[k]:loop_offsets[k + 1]]`` (0 loops for a row with an error),
-        and loop k's id in the input ``face_labels[k]``, if given."""
+        and loop k's id in the input ``face_labels[k]``, if given; loops that turn
+        ``clockwise`` seen from outside give their neighbours the other way round."""
         from grainclass._kernels.loops import OPEN, PINCHED, _adjacency_from_loops
 
         face_offsets = offsets_from_counts(face_counts)
@@ -154,7 +161,7 @@ class _Rows:
         flags = np.zeros(len(self.ids), np.int8)
         bad = np.zeros((len(self.ids), 3), np.int64)
         _adjacency_from_loops(
-            face_offsets, loop_offsets, corners, nbr_offsets, neighbors, flags, bad
+            face_offsets, loop_offsets, corners, nbr_offsets, neighbors, flags, bad, clockwise
         )
         neighbors = neighbors[: nbr_offsets[-1]]
         not_sphere = (flags & (OPEN | PINCHED)) != 0

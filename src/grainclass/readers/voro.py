@@ -8,6 +8,9 @@ indices, e.g. ``7 0.0351 0.6219 (1,3,2) (1,5,4,3) ...``.
 With ``%n``, a cell with a face on a wall of the container (a negative neighbour id: Voro++
 numbers the walls -1 to -6) is a boundary grain, and the others are not; without it, the file
 does not tell.
+
+Voro++'s loops turn clockwise seen from outside; they are read turned round, so that the
+neighbour lists turn counter-clockwise, as those of every reader with geometry do.
 """
 
 from __future__ import annotations
@@ -42,7 +45,7 @@ _AS_LOOP_TEXT = bytes.maketrans(b"(,)", b"  ;")
 def read_voro(lines: Iterable[bytes], source: str, chunk_size: int) -> Iterator[GrainBatch]:
     """Parse Voro++ ``%t`` output into batches of at most ``chunk_size`` cells."""
     unreadable = "cannot read this cell: expected id [volume [area]] [neighbours] (loop) ..."
-    rows = LoopText(source, unreadable)
+    rows = LoopText(source, unreadable, clockwise=True)
     for line_no, raw in enumerate(lines, 1):
         line = raw.strip()
         if not line or line.startswith(b"#"):
@@ -86,6 +89,6 @@ def read_voro(lines: Iterable[bytes], source: str, chunk_size: int) -> Iterator[
                 rows.add(grain_id, line_no, text, volume, area, boundary)
         if len(rows) >= chunk_size:
             yield rows.batch()
-            rows = LoopText(source, unreadable)
+            rows = LoopText(source, unreadable, clockwise=True)
     if len(rows):
         yield rows.batch()
