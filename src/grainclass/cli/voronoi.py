@@ -181,11 +181,11 @@ def voronoi_cmd(
                     writer.write(classify(batch))
         else:
             from grainclass.atomic import atomic_output
-            from grainclass.readers.adjacency import adjacency_lines
+            from grainclass.writers import adjacency_text
 
             with atomic_output(output) as sink:
                 for batch in batches:
-                    write_all(sink, "".join(adjacency_lines(batch)))
+                    write_all(sink, adjacency_text(batch))
     except GrainclassError as exc:
         raise click.ClickException(str(exc)) from None
     except BrokenPipeError:
