@@ -196,11 +196,10 @@ def _kernel_inputs(batch):
             np.zeros(g, np.int64),
         ),
         "weinberg": (
+            np.arange(g, dtype=np.int64),
             batch.face_offsets,
             batch.nbr_offsets,
             batch.neighbors,
-            np.ones(g, bool),
-            int(n_faces.max()),
             code_offsets,
             np.zeros(int(code_offsets[-1]), np.int32),
             np.zeros(g, np.int32),

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import dataclasses
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
@@ -168,20 +167,16 @@ def tally_batch(
     only) the Weinberg vectors are computed too, for the distinct types; with a
     ``belt_length`` other than 4 (a CSR batch only), flag grains are counted by the split type
     of their l-belts."""
-    from grainclass.classification import belt_profile, grain_codes, grain_codes_and_type_hashes
+    from grainclass.classification import grain_codes, grain_codes_and_type_hashes
     from grainclass.readers.planar_code import PlanarCodeRecords
 
     if isinstance(batch, PlanarCodeRecords) and not types:
         return _tally_records(batch)
     code_hashes = None
     if types:
-        codes, code_hashes = grain_codes_and_type_hashes(batch)
+        codes, code_hashes = grain_codes_and_type_hashes(batch, belt_length)
     else:
-        codes = grain_codes(batch)
-    if belt_length != 4:
-        profile = belt_profile(batch, codes.status, belt_length)
-        split = np.where(codes.split_k >= 0, profile[:, belt_length - 3, 1], -1)
-        codes = dataclasses.replace(codes, split_k=split)
+        codes = grain_codes(batch, belt_length)
     boundary = batch.boundary
     keep = None
     if boundary is not None and not include_boundary:

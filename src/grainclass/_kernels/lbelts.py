@@ -159,8 +159,8 @@ def _belt_profile(n, off, rot, longest, out):
 
 
 @njit
-def _belts_batch(first, last, face_offsets, nbr_offsets, neighbors, ok, longest, out):
-    """The belts of lengths 3..``longest`` of the ok grains among ``first:last`` of a CSR
+def _belts_batch(first, last, grains, face_offsets, nbr_offsets, neighbors, longest, out):
+    """The belts of lengths 3..``longest`` of the ok grains ``grains[first:last]`` of a CSR
     batch into ``out`` (int64[G, longest - 2, 3]: per l, the number of l-belts, the split type
     k of the most balanced and the l-penalty); rows of other grains are left alone. Grains of
     at most 64 faces on bitsets, larger ones on their rotation lists."""
@@ -169,15 +169,14 @@ def _belts_batch(first, last, face_offsets, nbr_offsets, neighbors, ok, longest,
     forb = np.zeros(longest + 2, np.uint64)
     cyc = np.empty(longest + 1, np.uint64)
     path = np.empty(longest + 1, np.int64)
-    for g in range(first, last):
-        if not ok[g]:
-            continue
+    for i in range(first, last):
+        g = grains[i]
         n, off, nb = grain_lists(g, face_offsets, nbr_offsets, neighbors)
         if n <= 64:
             for v in range(n):
                 row = ZERO
-                for i in range(off[v], off[v + 1]):
-                    row |= bit(nb[i])
+                for k in range(off[v], off[v + 1]):
+                    row |= bit(nb[k])
                 adj[v] = row
             _belt_profile_small(n, adj, longest, out[g], cand, forb, path, cyc)
         else:
