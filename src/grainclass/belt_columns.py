@@ -37,13 +37,15 @@ def belt_profile(batch: GrainBatch, out: Classified, longest: int) -> np.ndarray
 
 def belt_lists(profile: np.ndarray | None, field: int, ok: np.ndarray, kind) -> pa.Array:
     """Column ``field`` (0 belts, 1 split_k, 2 penalty) of the belt profile as a list per ok
-    grain, null elsewhere and for every grain without a profile."""
+    grain, null elsewhere and for every grain without a profile; a split type the grain does
+    not have (-1: fewer faces than the belts' length) is a null element."""
     g = len(ok)
     if profile is None:
         return pa.nulls(g, pa.list_(kind))
     width = profile.shape[1]
     offsets = np.arange(0, (g + 1) * width, width, dtype=np.int32)
-    values = numbers(np.ascontiguousarray(profile[:, :, field]).reshape(-1), kind)
+    column = np.ascontiguousarray(profile[:, :, field]).reshape(-1)
+    values = numbers(column, kind, column >= 0 if (column < 0).any() else None)
     return pa.ListArray.from_arrays(
         numbers(offsets, pa.int32()), values, mask=None if ok.all() else booleans(~ok)
     )
