@@ -196,11 +196,10 @@ def _kernel_inputs(batch):
             np.zeros(g, np.int64),
         ),
         "weinberg": (
+            np.arange(g, dtype=np.int64),
             batch.face_offsets,
             batch.nbr_offsets,
             batch.neighbors,
-            np.ones(g, bool),
-            int(n_faces.max()),
             code_offsets,
             np.zeros(int(code_offsets[-1]), np.int32),
             np.zeros(g, np.int32),
@@ -284,14 +283,14 @@ def write_adjacency(path: Path, n_vertices: int, count: int) -> None:
     from itertools import islice
 
     from grainclass.readers import read_dataset
-    from grainclass.readers.adjacency import adjacency_lines
+    from grainclass.writers import adjacency_text
 
     plantri = find_plantri()
     raw = path.with_suffix(".pc")
     subprocess.run([plantri, str(n_vertices), str(raw)], check=True, capture_output=True)
     batches = read_dataset(str(raw), chunk_size=100_000)
-    lines = (line for batch in batches for line in adjacency_lines(batch))
-    with open(path, "w") as out:
+    lines = (line for batch in batches for line in adjacency_text(batch).splitlines(True))
+    with open(path, "wb") as out:
         out.writelines(islice(lines, count))
     raw.unlink()
 

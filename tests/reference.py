@@ -248,16 +248,21 @@ def _smallest_first(tri: tuple[int, int, int]) -> tuple[int, int, int]:
     return tri[k:] + tri[:k]
 
 
-def belt_profile(lists: list[list[int]], longest: int = 6) -> dict[int, tuple[int, int, int]]:
+def belt_profile(
+    lists: list[list[int]], longest: int = 6
+) -> dict[int, tuple[int, int | None, int]]:
     """``{l: (belts, split_k, penalty)}`` for l = 3..longest by brute force: every l-subset of
     vertices whose induced subgraph is one cycle (for l = 3 only those whose removal leaves
     two sides: a face leaves one), its sides from networkx; split_k is the largest smaller
-    side (0 without a belt), penalty n times the sum of k (n - l - k)."""
+    side, penalty n times the sum of k (n - l - k). Without an l-belt, split_k is 0 (the
+    paper's Def. of split type: 0:l:(n - l)) where n >= l, and None where n < l: a disc of
+    n - l < 0 faces is none, and the definition asks k <= m."""
     n = len(lists)
     graph = nx.Graph((v, x) for v, nbrs in enumerate(lists) for x in nbrs)
     profile = {}
     for length in range(3, longest + 1):
-        belts = split_k = penalty = 0
+        belts = penalty = 0
+        split_k = 0 if n >= length else None
         for subset in itertools.combinations(range(n), length):
             induced = graph.subgraph(subset)
             if induced.number_of_edges() != length or any(d != 2 for _, d in induced.degree()):

@@ -50,7 +50,9 @@ def _general(graphs, longest=6):
         _rotation(n, off, nb, rot)
         profile = np.zeros((longest - 2, 3), np.int64)
         _belt_profile(n, off, rot, longest, profile)
-        out.append({length: tuple(profile[length - 3]) for length in range(3, longest + 1)})
+        # -1: no split type (fewer faces than the belts' length), null in the table
+        rows = [(b, None if k < 0 else k, p) for b, k, p in profile.tolist()]
+        out.append({length: rows[length - 3] for length in range(3, longest + 1)})
     return out
 
 

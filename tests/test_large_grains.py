@@ -8,11 +8,13 @@ import random
 import numpy as np
 import pyarrow as pa
 import pytest
+from click.testing import CliRunner
 from hypothesis import given, settings
 
 import reference
 from conftest import EXAMPLES
 from grainclass import GrainBatch, classify, read_dataset
+from grainclass.cli import cli
 from strategies import bipyramid, triangulations
 
 
@@ -126,7 +128,7 @@ def test_a_grain_over_the_memory_limit_is_refused_with_the_limit_named(garbage_a
 
 
 def test_the_memory_limit_comes_from_the_environment(monkeypatch):
-    from grainclass.classification import grain_memory_limit
+    from grainclass.memory import grain_memory_limit
 
     monkeypatch.setenv("GRAINCLASS_GRAIN_MEMORY", "1.5")
     assert grain_memory_limit() == int(1.5 * 2**20)
@@ -200,3 +202,81 @@ def test_large_random_grains_agree_with_the_oracle(lists):
     oracle = reference.classify(lists)
     for key in ("class", "truncations", "trees", "split_k", "belts4", "penalty"):
         assert row[key] == oracle[key], key
+
+
+def _prism_line(k: int) -> str:
+    return "prism\t" + ";".join(" ".join(map(str, face)) for face in _prism(k)) + "\n"
+
+
+@pytest.fixture
+def giant_among_polytopes(tmp_path):
+    """The bundled polytopes (all of at most 14 faces) with a 100-gonal prism among them."""
+    good = (EXAMPLES / "polytopes.txt").read_text()
+    path = tmp_path / "grains.txt"
+    path.write_text(good + _prism_line(100) + good)
+    return path
+
+
+def _refusing_belts(monkeypatch):
+    """The belts kernel as a system that refuses memory for any range holding a grain of more
+    than 64 faces (as it may for one giant grain among small ones)."""
+    from grainclass._kernels import lbelts
+
+    kernel = lbelts._belts_batch
+
+    def refusing(first, last, grains, face_offsets, *arrays):
+        chosen = grains[first:last]
+        if (face_offsets[chosen + 1] - face_offsets[chosen] > 64).any():
+            raise MemoryError
+        return kernel(first, last, grains, face_offsets, *arrays)
+
+    monkeypatch.setattr(lbelts, "_belts_batch", refusing)
+
+
+BY_BELT_LENGTH = [
+    ["summarize", "--table", "split", "--belt-length", "5"],
+    ["types", "--belt-length", "5", "--format", "csv"],
+]
+
+
+def _without_the_giant(runner, args, polytopes):
+    """What the command prints for the bundled polytopes twice over, without the giant."""
+    doubled = polytopes.parent / "doubled.txt"
+    doubled.write_text((EXAMPLES / "polytopes.txt").read_text() * 2)
+    result = runner.invoke(cli, [args[0], str(doubled), *args[1:], "-q"])
+    assert result.exit_code == 0, result.output
+    return result.stdout
+
+
+@pytest.mark.parametrize("args", BY_BELT_LENGTH, ids=["summarize", "types"])
+@pytest.mark.parametrize("cause", ["refused", "over the limit"])
+def test_a_giant_grain_refused_memory_for_its_belts_is_one_invalid_grain(
+    args, cause, giant_among_polytopes, monkeypatch
+):
+    runner = CliRunner()
+    expected = _without_the_giant(runner, args, giant_among_polytopes)
+    if cause == "refused":
+        _refusing_belts(monkeypatch)
+    else:  # the prism could need about 0.1 MB on the general path
+        monkeypatch.setenv("GRAINCLASS_GRAIN_MEMORY", "0.05")
+    result = runner.invoke(cli, [args[0], str(giant_among_polytopes), *args[1:], "-q"])
+    assert result.exit_code == 0, result.output
+    if args[0] == "types":  # the types of ok grains: the giant is not one
+        assert result.stdout == expected
+    else:
+        before = "grains: 26 (ok 26, degenerate 0, non_simple 0, invalid 0)"
+        after = "grains: 27 (ok 26, degenerate 0, non_simple 0, invalid 1)"
+        assert before in expected
+        assert result.stdout == expected.replace(before, after)
+
+
+def test_classify_with_belts_marks_the_grain_refused_memory_invalid(
+    giant_among_polytopes, monkeypatch
+):
+    _refusing_belts(monkeypatch)
+    rows = _rows(giant_among_polytopes, belts=5)
+    (giant,) = [r for r in rows if r["grain_id"] == "prism"]
+    assert giant["status"] == "invalid"
+    assert "out of memory" in giant["error"]
+    assert (giant["belts"], giant["splits"], giant["weinberg"]) == (None, None, None)
+    assert [r["status"] for r in rows].count("ok") == len(rows) - 1

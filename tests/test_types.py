@@ -148,12 +148,13 @@ def test_code_hashes_are_the_hashes_of_the_code_strings():
 
     from grainclass import GrainBatch
     from grainclass._kernels.columns import _code_hashes, _code_strings, _fnv1a
-    from grainclass.classification import MAX_BITSET_FACES, _classify_csr, _types
+    from grainclass.classification import MAX_BITSET_FACES, _classify_csr
+    from grainclass.weinberg_columns import weinberg_types
     from strategies import bipyramid
 
     # Bipyramids up to 120 faces: labels of one, two and three digits.
     batch = GrainBatch.from_lists([bipyramid(k) for k in (3, 4, 9, 30, 70, 118)])
-    types = _types(batch, _classify_csr(batch, MAX_BITSET_FACES, strings=False), True)
+    types = weinberg_types(batch, _classify_csr(batch, MAX_BITSET_FACES, strings=False), True)
     assert types.computed.all()
     assert max(types.weinberg) >= 100
     strings = _code_strings(types.weinberg, types.code_offsets, types.computed)

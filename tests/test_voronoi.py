@@ -127,9 +127,9 @@ def test_the_same_grains_from_adjacency_voro_and_loop_text(tmp_path):
     adjacency = tmp_path / "cells.txt"
     from_voro = classify(next(read_dataset(str(voro))))  # sniffed
     from_loops = classify(next(read_dataset(str(loops), input_format="loops")))
-    from grainclass.readers.adjacency import adjacency_lines
+    from grainclass.writers import adjacency_text
 
-    adjacency.write_text("".join(adjacency_lines(next(read_dataset(str(voro))))))
+    adjacency.write_bytes(adjacency_text(next(read_dataset(str(voro)))))
     from_text = classify(next(read_dataset(str(adjacency))))
     assert from_voro.column("status").to_pylist() == ["ok"] * 300
     assert from_voro.select(KEYS).equals(from_loops.select(KEYS))

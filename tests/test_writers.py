@@ -11,7 +11,7 @@ import numpy as np
 from conftest import EXAMPLES
 from grainclass import GrainBatch, read_dataset
 from grainclass.batch import offsets_from_counts
-from grainclass.readers.adjacency import adjacency_lines, read_adjacency
+from grainclass.readers.adjacency import read_adjacency
 from grainclass.readers.planar_code import read_planar_code
 from grainclass.writers import PLANAR_CODE_HEADER, adjacency_text, planar_code
 from strategies import bipyramid
@@ -51,9 +51,28 @@ def test_adjacency_text_reads_back_as_it_was():
     assert sorted(again.parse_errors) == sorted(batch.parse_errors) == [3]
 
 
-def test_adjacency_text_is_adjacency_lines_where_both_write():
-    batch = next(read_dataset(str(EXAMPLES / "polytopes.txt")))
-    assert adjacency_text(batch) == "".join(adjacency_lines(batch)).encode()
+def test_adjacency_text_of_the_examples_is_their_file_without_its_comments():
+    path = EXAMPLES / "polytopes.txt"
+    lines = [line for line in path.read_bytes().splitlines(True) if not line.startswith(b"#")]
+    assert adjacency_text(next(read_dataset(str(path)))) == b"".join(lines)
+
+
+def test_adjacency_text_writes_a_cells_measures_and_boundary_as_voronoi_has_them():
+    # What `grainclass voronoi` writes for its cells: volume and area with every digit, the
+    # boundary flag as 1/0, none where unknown.
+    tetrahedron = [[1, 2, 3], [0, 3, 2], [0, 1, 3], [0, 2, 1]]
+    batch = dataclasses.replace(
+        GrainBatch.from_lists([tetrahedron] * 3, grain_id=["7", "8", "9"]),
+        volume=np.array([0.1, 1 / 3, np.nan]),
+        area=np.array([2.5, 1e-20, np.nan]),
+        boundary=np.array([1, 0, -1], np.int8),
+    )
+    faces = "1 2 3;0 3 2;0 1 3;0 2 1"
+    assert adjacency_text(batch).decode() == (
+        f"7\t{faces}\tvolume=0.1\tarea=2.5\tboundary=1\n"
+        f"8\t{faces}\tvolume=0.3333333333333333\tarea=1e-20\tboundary=0\n"
+        f"9\t{faces}\n"
+    )
 
 
 def test_planar_code_reads_back_as_it_was():

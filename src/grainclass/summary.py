@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import dataclasses
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
@@ -17,7 +16,7 @@ from grainclass._kernels import codes as kernel_codes
 
 if TYPE_CHECKING:
     from grainclass.batch import GrainBatch
-    from grainclass.classification import GrainCodes
+    from grainclass.classified import GrainCodes
     from grainclass.readers.planar_code import PlanarCodeRecords
 
 KEYS = [
@@ -74,7 +73,7 @@ def tally_table(grains: pa.Table, include_boundary: bool = False, belt_length: i
     ``belt_length`` other than 4, flag grains by the split type of their l-belts (from the
     ``splits`` column). The rows are read back into the codes a raw batch is classified into,
     and counted as a raw batch is (:func:`tally_batch`)."""
-    from grainclass.classification import GrainCodes
+    from grainclass.classified import GrainCodes
 
     split = _codes(grains.column(schema.SPLIT_K))
     if belt_length != 4:
@@ -172,20 +171,16 @@ def tally_batch(
     only) the Weinberg vectors are computed too, for the distinct types; with a
     ``belt_length`` other than 4 (a CSR batch only), flag grains are counted by the split type
     of their l-belts."""
-    from grainclass.classification import belt_profile, grain_codes, grain_codes_and_type_hashes
+    from grainclass.classification import grain_codes, grain_codes_and_type_hashes
     from grainclass.readers.planar_code import PlanarCodeRecords
 
     if isinstance(batch, PlanarCodeRecords) and not types:
         return _tally_records(batch)
     code_hashes = None
     if types:
-        codes, code_hashes = grain_codes_and_type_hashes(batch)
+        codes, code_hashes = grain_codes_and_type_hashes(batch, belt_length)
     else:
-        codes = grain_codes(batch)
-    if belt_length != 4:
-        profile = belt_profile(batch, codes.status, belt_length)
-        split = np.where(codes.split_k >= 0, profile[:, belt_length - 3, 1], -1)
-        codes = dataclasses.replace(codes, split_k=split)
+        codes = grain_codes(batch, belt_length)
     keep = uncut(batch, include_boundary)
     hashes = np.zeros(0, np.uint64)
     if code_hashes is not None:  # the distinct types of the kept ok grains

@@ -147,10 +147,10 @@ def _validation_first() -> None:
 
     from grainclass._kernels.bits import MAX_BITSET_FACES
     from grainclass.batch import GrainBatch
-    from grainclass.classification import _Classified, _validate_pending
+    from grainclass.classification import Classified, _validate_pending
 
     batch = GrainBatch.from_lists([CUBE])
-    out = _Classified.empty(batch, strings=True)
+    out = Classified.empty(batch, strings=True)
     _validate_pending(batch, out, np.zeros(1, np.int64), MAX_BITSET_FACES, strings=True)
 
 
@@ -187,12 +187,13 @@ def _last_kernels_first(
     (VALIDATION), it needs the fast path next, which the helper then compiles."""
     from grainclass._kernels import codes
     from grainclass.batch import GrainBatch
-    from grainclass.classification import _Classified, _table, _types, classify
+    from grainclass.classification import Classified, _table, classify
+    from grainclass.weinberg_columns import weinberg_types
 
-    out = _Classified.empty(batch, strings=True)
+    out = Classified.empty(batch, strings=True)
     out.status[:] = codes.OK
     out.consistent[:] = True
-    walked = _types(batch, out, types)
+    walked = weinberg_types(batch, out, types)
     told = plan()
     if told == GENERAL:
         _general_first(GrainBatch.from_lists([PRISM]))
@@ -207,9 +208,9 @@ def _general_first(batch: GrainBatch) -> None:
     import numpy as np
 
     from grainclass._kernels import codes
-    from grainclass.classification import _Classified, _classify_general
+    from grainclass.classification import Classified, _classify_general
 
-    out = _Classified.empty(batch, strings=True)
+    out = Classified.empty(batch, strings=True)
     out.status[:] = codes.PENDING
     _classify_general(batch, out, np.flatnonzero(out.status == codes.PENDING), strings=True)
 

@@ -356,15 +356,42 @@ def _small_record(buf, p, end):
 
 
 @njit(inline="always")
-def census_key(n, family, truncations, trees, split):
-    """The group an ok grain of at most 64 faces is counted in: family, class, faces, round
-    (truncations, -1 for sc) and split (-1 unless fundamental flag), each shifted to be >= 0,
-    in 8 bits apiece (:func:`census_fields` reads them back). The rules are those of
-    ``classification._grain_codes`` for rows; ``tests/test_census_path.py`` holds the two to
-    the same tables."""
+def grain_fields(family, truncations, trees, split):
+    """``(class_code, round_k, split_k)`` of an ok grain of ``family`` that is ``truncations``
+    truncations from its fundamental polytope, with ``trees`` truncation trees and belts whose
+    split type has ``split`` as its k: the class an index into ``vocabulary.CLASSES``
+    (``CLASS_OF``), round_k -1 for sc (never round), split_k -1 unless the grain is
+    fundamental flag. The one place these rules are written: the per-grain rows and the
+    summaries read them through :func:`_grain_codes`, the census through :func:`census_key`."""
     class_code = CLASS_OF[family, min(truncations, 3), 1 if trees == 2 else 0]
     round_k = -1 if family == SC else truncations
     split_k = split if family == FLAG and truncations == 0 else -1
+    return class_code, round_k, split_k
+
+
+@njit
+def _grain_codes(
+    status, n_faces, family, fundamental, trees, split, truncations, class_code, round_k, split_k
+):
+    """Per grain of a batch (inputs as the classification kernels write them, ``split`` the k
+    of each grain's split type), its truncations, class, round_k and split_k by
+    :func:`grain_fields` into the last four arrays; -1 for each where the grain is not ok."""
+    for g in range(status.shape[0]):
+        if status[g] == OK:
+            truncations[g] = n_faces[g] - fundamental[g]
+            class_code[g], round_k[g], split_k[g] = grain_fields(
+                family[g], truncations[g], trees[g], split[g]
+            )
+        else:
+            truncations[g] = class_code[g] = round_k[g] = split_k[g] = -1
+
+
+@njit(inline="always")
+def census_key(n, family, truncations, trees, split):
+    """The group an ok grain of at most 64 faces is counted in: family, class, faces, round
+    (truncations, -1 for sc) and split (-1 unless fundamental flag), by :func:`grain_fields`,
+    each shifted to be >= 0, in 8 bits apiece (:func:`census_fields` reads them back)."""
+    class_code, round_k, split_k = grain_fields(family, truncations, trees, split)
     key = (int(family) + 1) * 256 + int(class_code) + 1  # int(): no int8 wrap-around without JIT
     return ((key * 256 + int(n)) * 256 + int(round_k) + 1) * 256 + int(split_k) + 1
 

@@ -113,34 +113,6 @@ def _decimal_strings(values):
 
 
 @njit
-def _faces_fields(face_offsets, nbr_offsets, neighbors):
-    """Arrow string buffers for each grain's faces as adjacency text writes them: each face's
-    neighbours separated by spaces, faces separated by ``;``."""
-    n = face_offsets.shape[0] - 1
-    offsets = np.zeros(n + 1, np.int64)
-    for g in range(n):
-        size = max(face_offsets[g + 1] - face_offsets[g] - 1, 0)  # the ";"s
-        for f in range(face_offsets[g], face_offsets[g + 1]):
-            size += max(nbr_offsets[f + 1] - nbr_offsets[f] - 1, 0)  # the spaces
-            for i in range(nbr_offsets[f], nbr_offsets[f + 1]):
-                size += _digits(neighbors[i])
-        offsets[g + 1] = offsets[g] + size
-    data = np.empty(offsets[n], np.uint8)
-    for g in range(n):
-        p = offsets[g]
-        for f in range(face_offsets[g], face_offsets[g + 1]):
-            if f > face_offsets[g]:
-                data[p] = 59  # ";"
-                p += 1
-            for i in range(nbr_offsets[f], nbr_offsets[f + 1]):
-                if i > nbr_offsets[f]:
-                    data[p] = 32  # " "
-                    p += 1
-                p = _write_digits(data, p, neighbors[i])
-    return offsets, data
-
-
-@njit
 def _code_strings(codes, code_offsets, ok):
     """Arrow string buffers for Weinberg codes written as ``(1,2,3,...)``; empty when not ok.
 

@@ -4,8 +4,8 @@ An l-belt is a set of l faces whose dual graph is a chordless l-cycle of the dua
 triangulation; for l = 3 only the non-trivial ones count (a 3-cycle that is not a face, whose
 removal leaves two sides). Removing a belt leaves two discs of k and m faces, k <= m; the split
 type k:l:m of a grain is that of its most balanced l-belt (largest k), 0:l:(n - l) without
-one. A grain's l-penalty is n times the sum over its l-belts of k (n - l - k): for l = 4 the
-paper's penalty.
+one, and none (-1) for a grain of fewer than l faces. A grain's l-penalty is n times the sum
+over its l-belts of k (n - l - k): for l = 4 the paper's penalty.
 
 Each chordless cycle is grown once from its smallest vertex s, by a depth-first search of
 chordless paths s, p1, p2, ... through vertices above s: the next vertex is a neighbour of the
@@ -26,6 +26,18 @@ MAX_BELT_LENGTH = 10
 
 
 @njit(inline="always")
+def _no_belts(out, n, longest):
+    """``out`` (int64[longest - 2, 3]) before any belt is found: per l, no belts and no
+    penalty, and the split type of a grain without an l-belt, 0:l:(n - l) by the paper's
+    definition (Def. of split type), where n >= l; where n < l none (-1): 0:l:(n - l) would
+    leave a disc of n - l < 0 faces, and break the definition's k <= m."""
+    for r in range(longest - 2):
+        out[r, 0] = 0
+        out[r, 1] = 0 if n >= r + 3 else -1
+        out[r, 2] = 0
+
+
+@njit(inline="always")
 def _record(out, n, length, k):
     """One belt of ``length`` with split type k into ``out``."""
     row = length - 3
@@ -41,8 +53,7 @@ def _belt_profile_small(n, adj, longest, out, cand, forb, path, cyc):
     ``cand``, ``forb``, ``cyc`` (uint64[longest + 1]) and ``path`` (int64[longest + 1]) are
     scratch: per depth j, the choices left for p_j, the vertices next to p_1..p_{j-2}, and the
     cycle's vertices so far. A belt's sides are the components of the rest, on bitsets."""
-    for r in range(longest - 2):
-        out[r, 0] = out[r, 1] = out[r, 2] = 0
+    _no_belts(out, n, longest)
     everything = full(n)
     for s in range(n):
         above = everything & ~full(s + 1)
@@ -99,8 +110,7 @@ def _belt_profile(n, off, rot, longest, out):
     rotation lists ``rot``: the path's neighbours are counted in an array, and a belt's sides
     come from the weights of its darts (``belts._side_weights``) without a search. O(n + E)
     memory; time as the number of chordless paths of fewer than ``longest`` vertices."""
-    for r in range(longest - 2):
-        out[r, 0] = out[r, 1] = out[r, 2] = 0
+    _no_belts(out, n, longest)
     rev = _reverse_darts(n, off, rot)
     w = _side_weights(n, off, rot, rev)
     blocked = np.zeros(n, np.int64)  # times a vertex is in or next to p_1..p_{j-2}
@@ -159,8 +169,8 @@ def _belt_profile(n, off, rot, longest, out):
 
 
 @njit
-def _belts_batch(first, last, face_offsets, nbr_offsets, neighbors, ok, longest, out):
-    """The belts of lengths 3..``longest`` of the ok grains among ``first:last`` of a CSR
+def _belts_batch(first, last, grains, face_offsets, nbr_offsets, neighbors, longest, out):
+    """The belts of lengths 3..``longest`` of the ok grains ``grains[first:last]`` of a CSR
     batch into ``out`` (int64[G, longest - 2, 3]: per l, the number of l-belts, the split type
     k of the most balanced and the l-penalty); rows of other grains are left alone. Grains of
     at most 64 faces on bitsets, larger ones on their rotation lists."""
@@ -169,15 +179,14 @@ def _belts_batch(first, last, face_offsets, nbr_offsets, neighbors, ok, longest,
     forb = np.zeros(longest + 2, np.uint64)
     cyc = np.empty(longest + 1, np.uint64)
     path = np.empty(longest + 1, np.int64)
-    for g in range(first, last):
-        if not ok[g]:
-            continue
+    for i in range(first, last):
+        g = grains[i]
         n, off, nb = grain_lists(g, face_offsets, nbr_offsets, neighbors)
         if n <= 64:
             for v in range(n):
                 row = ZERO
-                for i in range(off[v], off[v + 1]):
-                    row |= bit(nb[i])
+                for k in range(off[v], off[v + 1]):
+                    row |= bit(nb[k])
                 adj[v] = row
             _belt_profile_small(n, adj, longest, out[g], cand, forb, path, cyc)
         else:

@@ -190,29 +190,33 @@ def _rotations(first, last, grains, face_offsets, nbr_offsets, neighbors, rotati
 def _weinberg_batch(
     first,
     last,
+    grains,
     face_offsets,
     nbr_offsets,
     rotations,
-    ok,
-    max_faces,
     code_offsets,
     codes,
     symmetry,
     chirality,
 ):
-    """Weinberg vectors of the ok grains among ``first:last``: grain g's code goes to
-    ``codes[code_offsets[g]:]`` (6n - 11 entries), with its symmetry (automorphisms, reflections
-    included) and chirality. Rows of different ranges are disjoint: ranges can run in threads.
+    """Weinberg vectors of the ok grains ``grains[first:last]`` of at most DENSE_FACES faces:
+    grain g's code goes to ``codes[code_offsets[g]:]`` (6n - 11 entries), with its symmetry
+    (automorphisms, reflections included) and chirality. Rows of different ranges are
+    disjoint: ranges can run in threads.
 
     ``rotations`` are the neighbour lists turning one way, counter-clockwise (as the fast path
-    found them, or from :func:`_rotations`). Scratch arrays for up to ``max_faces`` faces (the
-    rotation table, int32, and the walks' table, int64, each with rows and columns the least
-    power of two >= max_faces) are allocated once per call.
+    found them, or from :func:`_rotations`). Scratch arrays for the largest of these grains
+    (the rotation table, int32, and the walks' table, int64, each with rows and columns the
+    least power of two >= its faces) are allocated once per call: a call for one grain
+    allocates for that grain alone.
 
     The rotation table is filled in one pass over the grain's darts without a branch: each
     list's first dart is marked beforehand with the list's last face, which comes before it
     (a loop per list would be mispredicted at each list's end).
     """
+    max_faces = 0
+    for j in range(first, last):
+        max_faces = max(max_faces, face_offsets[grains[j] + 1] - face_offsets[grains[j]])
     stride = 1
     while stride < max_faces:
         stride *= 2
@@ -227,9 +231,8 @@ def _weinberg_batch(
     smallest_faces = np.empty(max(max_faces, 1), np.int64)
     # Not the literal 0: numba would compile _weinberg once for a literal 0 and once for int64.
     gen = np.int64(0)
-    for g in range(first, last):
-        if not ok[g]:
-            continue
+    for j in range(first, last):
+        g = grains[j]
         f0 = face_offsets[g]
         n = face_offsets[g + 1] - f0
         off = nbr_offsets[f0 : f0 + n + 1]

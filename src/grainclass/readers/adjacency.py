@@ -273,26 +273,3 @@ def read_adjacency(lines: Iterable[bytes], source: str, chunk_size: int) -> Iter
         first_line += len(raw_lines)
     if len(chunk):
         yield chunk.batch()
-
-
-def adjacency_lines(batch: GrainBatch) -> Iterator[str]:
-    """The batch's grains as adjacency text lines (the inverse of :func:`read_adjacency`).
-
-    Volumes and areas are written with every digit (``repr``) where the batch has them.
-    """
-    from grainclass._kernels.columns import _faces_fields
-
-    offsets, data = _faces_fields(batch.face_offsets, batch.nbr_offsets, batch.neighbors)
-    text = data.tobytes().decode()
-    ids = batch.grain_id  # a list, or an Arrow array (to_pylist: one call, not one per row)
-    columns = [
-        [str(grain_id) for grain_id in getattr(batch.grain_id, "to_pylist", lambda: ids)()],
-        [text[a:b] for a, b in zip(offsets[:-1].tolist(), offsets[1:].tolist(), strict=True)],
-    ]
-    for key, values in (("volume", batch.volume), ("area", batch.area)):
-        if values is not None:
-            columns.append([f"\t{key}={v!r}" if v == v else "" for v in values.tolist()])
-    if batch.boundary is not None:
-        columns.append([f"\tboundary={b}" if b >= 0 else "" for b in batch.boundary.tolist()])
-    for fields in zip(*columns, strict=True):
-        yield f"{fields[0]}\t{fields[1]}{''.join(fields[2:])}\n"
