@@ -96,3 +96,45 @@ def test_a_table_with_nulls_where_values_must_be_is_named(
     result = _run(*command, path, *extra)
     assert result.exit_code == 1
     assert said in _one_error_line(result)
+
+
+def _dump(bounds: str, tilted: bool = False) -> str:
+    header = "ITEM: BOX BOUNDS xy xz yz pp pp pp" if tilted else "ITEM: BOX BOUNDS pp pp pp"
+    return (
+        f"ITEM: TIMESTEP\n0\nITEM: NUMBER OF ATOMS\n2\n{header}\n{bounds}\n"
+        "ITEM: ATOMS id x y z\n1 0.1 0.2 0.3\n2 0.6 0.7 0.8\n"
+    )
+
+
+BAD_BOXES = {
+    "x bounds 0 0": (_dump("0 0\n0 1\n0 1"), "each side must be from"),
+    "x bounds 1 0": (_dump("1 0\n0 1\n0 1"), "each side must be from"),
+    "x bounds 0 nan": (_dump("0 nan\n0 1\n0 1"), "must be finite numbers"),
+    "x bounds 0 1e309": (_dump("0 1e309\n0 1\n0 1"), "must be finite numbers"),
+    "a tilt larger than the box": (_dump("0 1 5\n0 1 0\n0 1 0", True), "a tilt larger"),
+    "a NaN tilt": (_dump("0 1 nan\n0 1 0\n0 1 0", True), "must be finite numbers"),
+    "a flat Lattice": (
+        '2\nLattice="1 0 0 0 1 0 0 0 0"\nH 0.1 0.1 0.1\nH 0.5 0.5 0.5\n',
+        "each side must be from",
+    ),
+    "a negative Lattice": (
+        '2\nLattice="-1 0 0 0 1 0 0 0 1"\nH 0.1 0.1 0.1\nH 0.5 0.5 0.5\n',
+        "each side must be from",
+    ),
+}
+
+
+@pytest.mark.parametrize("case", sorted(BAD_BOXES))
+def test_a_box_read_from_a_points_file_is_checked_as_box_is(tmp_path, case):
+    """Such boxes ended in a LinAlgError, a TypeError about complex numbers, or Voro++ ending
+    the process with exit 2."""
+    text, said = BAD_BOXES[case]
+    points = tmp_path / ("points.xyz" if "Lattice" in case else "points.dump")
+    points.write_text(text)
+    out = tmp_path / "cells.txt"
+    result = _run("voronoi", "--points", points, "-o", out)
+    assert result.exit_code == 1
+    line = _one_error_line(result)
+    assert str(points) in line
+    assert said in line
+    assert not out.exists()

@@ -7,6 +7,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
+SMALLEST_SIDE, LARGEST_SIDE = 1e-30, 1e30
+"""The sides a box may have: volumes are computed in a box scaled to cells of about unit volume
+and scaled back, and summed; far beyond these bounds the factor or the sum leaves the range of a
+float."""
+
 
 @dataclass(frozen=True)
 class Box:
@@ -18,6 +23,18 @@ class Box:
     high: tuple[float, float, float]
     periodic: tuple[bool, bool, bool] = (True, True, True)
     tilt: tuple[float, float, float] | None = None
+
+    def problem(self) -> str | None:
+        """What makes this no box to tessellate, in words, or None: a bound or tilt that is not
+        a finite number, or a side that is not from :data:`SMALLEST_SIDE` to
+        :data:`LARGEST_SIDE`."""
+        if not all(np.isfinite([*self.low, *self.high, *(self.tilt or ())])):
+            return "its bounds and tilts must be finite numbers"
+        sides = self.lengths
+        if not all(SMALLEST_SIDE <= side <= LARGEST_SIDE for side in sides):
+            shown = ", ".join(f"{side:g}" for side in sides)
+            return f"each side must be from {SMALLEST_SIDE:g} to {LARGEST_SIDE:g}, not {shown}"
+        return None
 
     @property
     def matrix(self) -> np.ndarray:

@@ -294,6 +294,8 @@ def _read_xyz(lines: list[str], source: str, radius_column: str | None) -> Point
             pbc,
             tuple(float(t) for t in tilt) if any(tilt) else None,
         )
+        if box.problem():
+            raise InputError(source, f"the Lattice of line 2 is no box: {box.problem()}", 2)
     ids = (
         _ids(table["id"], source, numbers, "point")
         if "id" in table
@@ -357,11 +359,17 @@ def _read_lammps(lines: list[str], source: str, radius_column: str | None) -> Po
                 "(pp pp pp) are tessellated",
                 at + 1,
             )
+        if not (x_high > x_low and y_high > y_low):  # NaNs too
+            raise InputError(
+                source, "the BOX BOUNDS are no box: a tilt larger than the box", at + 1
+            )
         box = Box(
             (x_low, y_low, bounds[2][0]), (x_high, y_high, bounds[2][1]), periodic, (xy, xz, yz)
         )
     else:
         box = Box(tuple(b[0] for b in bounds), tuple(b[1] for b in bounds), periodic)
+    if box.problem():
+        raise InputError(source, f"the BOX BOUNDS are no box: {box.problem()}", at + 1)
     at = found["ATOMS"]
     names = lines[at][5:].split()[1:]
     columns: dict[str, int] = {}
