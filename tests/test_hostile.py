@@ -138,3 +138,27 @@ def test_a_box_read_from_a_points_file_is_checked_as_box_is(tmp_path, case):
     assert str(points) in line
     assert said in line
     assert not out.exists()
+
+
+def test_a_points_id_past_64_bits_is_named_without_a_numpy_warning(tmp_path):
+    points = tmp_path / "points.txt"
+    points.write_text("18446744073709551616 0.1 0.2 0.3\n2 0.6 0.7 0.8\n")
+    result = _run("voronoi", "--points", points, "-o", tmp_path / "cells.txt")
+    assert result.exit_code == 1
+    assert "points.txt:1: cannot read this point: id 1.84467e+19" in _one_error_line(result)
+    assert "RuntimeWarning" not in result.stderr
+
+
+@pytest.mark.parametrize(
+    ("options", "said"),
+    [
+        (["--radius-column", "nope"], "--radius-column: Voro++'s input names no columns"),
+        (["--periodic", ""], "expected axes among x, y, z (or none), got ''"),
+    ],
+)
+def test_voronoi_options_that_would_be_ignored_are_refused(tmp_path, options, said):
+    points = tmp_path / "points.txt"
+    points.write_text("1 0.1 0.2 0.3\n2 0.6 0.7 0.8\n")
+    result = _run("voronoi", "--points", points, *options, "-o", tmp_path / "cells.txt")
+    assert result.exit_code == 2
+    assert said in _one_error_line(result)

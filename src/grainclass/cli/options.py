@@ -49,6 +49,7 @@ FLAGS = {
     "kind": "KIND",
     "periodic": "--periodic",
     "box": "--box",
+    "radius_column": "--radius-column",
 }
 
 

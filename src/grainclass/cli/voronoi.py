@@ -38,7 +38,7 @@ def periodic_axes(ctx: click.Context, param: click.Parameter, value: str | None)
     if value is None:
         return None
     axes = "" if value.lower() == "none" else value.lower()
-    if set(axes) - set("xyz") or len(set(axes)) != len(axes):
+    if not value or set(axes) - set("xyz") or len(set(axes)) != len(axes):
         raise click.BadParameter(f"expected axes among x, y, z (or none), got {value!r}")
     return tuple(axis in axes for axis in "xyz")
 

@@ -23,7 +23,7 @@ from pathlib import Path
 import numpy as np
 
 from grainclass.box import Box, Points
-from grainclass.errors import InputError
+from grainclass.errors import InputError, OptionError
 
 POINT_FORMATS = ("voro", "xyz", "lammps", "csv", "npy")
 RADIUS_NAMES = ("r", "radius")  # columns or properties read as radii unless one is named
@@ -193,13 +193,15 @@ def _radius_column(names: list[str], radius_column: str | None, source: str) -> 
 
 
 def _ids(values: np.ndarray, source: str, numbers: np.ndarray, what: str) -> np.ndarray:
-    """Ids read as numbers, as int64: each must be a whole number."""
-    ids = values.astype(np.int64)
-    bad = np.flatnonzero(ids != values)
+    """Ids read as numbers, as int64: each must be a whole number that an int64 holds."""
+    held = np.isfinite(values) & (np.abs(values) < 2.0**63)
+    ids = np.where(held, values, 0.0).astype(np.int64)
+    bad = np.flatnonzero((ids != values) | ~held)
     if len(bad):
         raise InputError(
             source,
-            f"cannot read this {what}: id {values[bad[0]]:g} is not a whole number",
+            f"cannot read this {what}: id {values[bad[0]]:g} is not a whole number from -2^63 "
+            "to 2^63 - 1",
             int(numbers[bad[0]]),
         )
     return ids
@@ -207,6 +209,11 @@ def _ids(values: np.ndarray, source: str, numbers: np.ndarray, what: str) -> np.
 
 def _read_voro(lines: list[str], source: str, radius_column: str | None) -> Points:
     """Voro++'s input: ``id x y z`` or ``id x y z r`` per line, the same on every line."""
+    if radius_column is not None:
+        raise OptionError(
+            "radius_column",
+            "Voro++'s input names no columns: a radius is the fifth number of a line",
+        )
     first = next((line.split() for line in lines if line.strip()), [])
     if not first:
         empty = np.empty(0, np.int64)
