@@ -162,3 +162,41 @@ def test_voronoi_options_that_would_be_ignored_are_refused(tmp_path, options, sa
     result = _run("voronoi", "--points", points, *options, "-o", tmp_path / "cells.txt")
     assert result.exit_code == 2
     assert said in _one_error_line(result)
+
+
+@pytest.mark.parametrize(
+    ("options", "code", "said"),
+    [
+        (["--scheduler", "bogus"], 1, "no Dask scheduler at 'bogus'"),
+        (["--plantri", "/bin/false"], 1, "/bin/false -u 4 failed (exit 1)"),
+        (["--plantri", "/no/such/plantri"], 1, "/no/such/plantri: cannot be run"),
+        (["--workers", "100000"], 2, "--workers"),
+    ],
+)
+def test_a_census_that_cannot_start_says_so_in_one_line(tmp_path, options, code, said):
+    """Each ended in a traceback (a bogus scheduler), some 90 lines of Dask workers' tracebacks
+    even with -q (a plantri that fails), or workers dying as they started."""
+    import subprocess
+    import sys
+
+    run = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "grainclass",
+            "census",
+            "8",
+            "-o",
+            str(tmp_path / "c"),
+            "-q",
+            *options,
+        ],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
+    assert run.returncode == code, run.stderr
+    errors = [line for line in run.stderr.splitlines() if line.startswith("Error: ")]
+    assert len(errors) == 1, run.stderr
+    assert said in errors[0]
+    assert "Traceback" not in run.stderr

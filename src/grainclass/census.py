@@ -25,7 +25,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from grainclass.errors import CensusError, MissingDependencyError, OutputError
+from grainclass.errors import CensusError, MissingDependencyError, OptionError, OutputError
 from grainclass.options import DEFAULT_CHUNK_SIZE
 from grainclass.plantri import CHECKS, plantri_count, plantri_version, run_plantri
 from grainclass.vocabulary import TABLES
@@ -37,6 +37,8 @@ if TYPE_CHECKING:
     from grainclass.summary import Summary
 
 PROGRESS_TOPIC = "grainclass-census-progress"
+SCHEDULER_TIMEOUT = "30s"  # to reach a running scheduler (--scheduler)
+LOCAL_WORKERS_PER_CPU = 4  # more worker processes than this on a machine only crowd its memory
 
 
 @dataclass(frozen=True, order=True)
@@ -563,18 +565,30 @@ def dask_client(scheduler: str | None = None, workers: int | None = None) -> Ite
     out."""
     from distributed import Client, LocalCluster
 
+    from grainclass.parallel import available_cpus, interrupts_blocked
+
     if scheduler:
-        with Client(scheduler) as client:
+        try:
+            client = Client(scheduler, timeout=SCHEDULER_TIMEOUT)
+        except (OSError, ValueError, TimeoutError) as exc:
+            raise CensusError(f"no Dask scheduler at {scheduler!r}: {exc}") from None
+        with client:
             yield client
         return
-    from grainclass.parallel import available_cpus, interrupts_blocked
+    most = LOCAL_WORKERS_PER_CPU * available_cpus()
+    if workers is not None and workers > most:
+        raise OptionError(
+            "workers",
+            f"a local cluster of {workers} worker processes on {available_cpus()} CPUs: at most "
+            f"{most} (each worker holds the libraries, some 200 MB)",
+        )
 
     # A worker restarted after a loss is not news here. silence_logs holds Dask's logs to errors
     # while the cluster runs, not while it closes, when a census stopped by Ctrl-C would log its
     # links to the workers closing, with tracebacks: they are held so until the cluster is gone.
     logs = logging.getLogger("distributed")
     level = logs.level
-    logs.setLevel(logging.ERROR)
+    logs.setLevel(logging.CRITICAL)
     try:
         with contextlib.ExitStack() as stack:
             # The workers start (from Dask's threads, which take this thread's signal mask)
@@ -590,7 +604,9 @@ def dask_client(scheduler: str | None = None, workers: int | None = None) -> Ite
                         # server listens on a free local port, so that several clusters can run
                         # at once.
                         dashboard_address="127.0.0.1:0",
-                        silence_logs=logging.ERROR,
+                        # A failed part is reported by the census itself, once: the workers'
+                        # own reports of it (a traceback each) stay out of the way.
+                        silence_logs=logging.CRITICAL,
                         preload=[__name__],
                     )
                 )

@@ -64,7 +64,8 @@ def _reported_count(stderr: bytes, command: list[str], returncode: int = 0) -> i
     """
     if returncode:
         message = stderr.decode(errors="replace").strip()
-        raise PlantriError(f"{' '.join(command)} failed (exit {returncode}): {message}")
+        said = f": {message}" if message else ""
+        raise PlantriError(f"{' '.join(command)} failed (exit {returncode}){said}")
     found = _COUNT_LINE.search(stderr)
     if not found:
         message = stderr.decode(errors="replace").strip()
@@ -113,6 +114,24 @@ def plantri_count(n: int, check: str, plantri: str | None = None) -> int:
     command = [plantri_command(plantri), *flags, str(n)]
     done = subprocess.run(command, capture_output=True, check=False)
     return _reported_count(done.stderr, command, done.returncode)
+
+
+def check_plantri(plantri: str | None = None) -> None:
+    """Run plantri on the triangulations with 4 vertices: a binary that cannot be run, or fails,
+    fails here, once, rather than in every task of a census.
+
+    Raises
+    ------
+    PlantriError
+        When it cannot be run, or fails.
+    """
+    command = [plantri_command(plantri), "-u", "4"]
+    try:
+        done = subprocess.run(command, capture_output=True, check=False)
+    except OSError as exc:
+        raise PlantriError(f"{command[0]}: cannot be run ({exc.strerror or exc})") from None
+    if done.returncode:
+        _reported_count(done.stderr, command, done.returncode)
 
 
 def plantri_version(plantri: str | None = None) -> str:

@@ -35,9 +35,9 @@ from grainclass.options import DEFAULT_CHUNK_SIZE, MAX_CHUNK_SIZE
 )
 @click.option(
     "--workers",
-    type=click.IntRange(1, 1024),
-    help="Worker processes of the local cluster, 1 to 1024 (default: one per CPU this process "
-    "may use).",
+    type=click.IntRange(1, 4096),
+    help="Worker processes of the local cluster, up to four per CPU this process may use "
+    "(default: one per CPU).",
 )
 @click.option(
     "--chunk-size",
@@ -71,6 +71,10 @@ def census_cmd(
 
     startup.resume_collection()
     require_dask()
+    if scheduler is None:  # a remote cluster's workers may see another plantri at that path
+        from grainclass.plantri import check_plantri
+
+        check_plantri(plantri)
     with dask_client(scheduler, workers) as client:
         result = run_census(
             n_values,

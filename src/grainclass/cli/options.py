@@ -50,6 +50,7 @@ FLAGS = {
     "periodic": "--periodic",
     "box": "--box",
     "radius_column": "--radius-column",
+    "workers": "--workers",
 }
 
 
