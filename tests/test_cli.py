@@ -597,45 +597,69 @@ def test_an_empty_output_path_is_a_usage_error(runner, args):
 
 def test_after_the_first_stop_signal_the_others_are_let_go(monkeypatch):
     """timeout sends its signal to the process, then to its group: the second one cut short the
-    clean-up of the first, or ended the shutdown in a traceback."""
+    clean-up of the first, or ended the shutdown in a traceback. The first is raised at the
+    run's next checkpoint, once; later ones change nothing."""
     import signal
 
+    from grainclass import interrupts
+
     monkeypatch.setattr(signals, "_stopping", False)
-    with pytest.raises(signals.Stopped):
-        signals.stop(signal.SIGTERM, None)
+    monkeypatch.setattr(signals, "_end_unless_stopped", lambda signum: None)
+    monkeypatch.setattr(interrupts, "_requested", None)
+    monkeypatch.setattr(interrupts, "_raised", False)
+    assert signals.stop(signal.SIGTERM, None) is None  # asked for, not raised here
     assert signals.stop(signal.SIGINT, None) is None
-    assert signals.stop(signal.SIGTERM, None) is None
-    monkeypatch.setattr(signals, "_stopping", False)
-    with pytest.raises(KeyboardInterrupt):
-        signals.stop(signal.SIGINT, None)
+    with pytest.raises(interrupts.Stopped) as stopped:
+        interrupts.checkpoint()
+    assert stopped.value.signum == signal.SIGTERM
+    interrupts.checkpoint()  # raised once only
 
 
-@pytest.mark.parametrize("caught", [True, False], ids=["sent again", "premise: lost"])
-def test_a_stop_raised_where_python_ignores_exceptions_is_sent_again(caught):
+def test_a_stop_that_lands_where_python_ignores_exceptions_is_not_lost():
     """Ctrl-C once reached a census in a weakref's callback, where Python ignores the exception:
-    the census ran to its end, and would have let any later signal go."""
-    script = f"""
-import signal, sys, weakref
+    the census ran to its end. A stop is now asked for wherever it lands, and raised at the next
+    checkpoint."""
+    script = """
+import signal, weakref
+from grainclass import interrupts
 from grainclass.cli import signals
-if {caught}:
-    signals.catch_stops()
-else:
-    signal.signal(signal.SIGINT, signals.stop)
+signals.catch_stops()
 class Grain: pass
 grain = Grain()
 # The signal handled while the callback runs, as the garbage collector may run one anywhere.
 ref = weakref.ref(grain, lambda ref: signals.stop(signal.SIGINT, None))
 try:
     del grain
-    for _ in range(10**7):
-        pass
+    interrupts.checkpoint()
     print("went on")
 except KeyboardInterrupt:
     print("interrupted")
 """
     run = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=60)
-    assert run.stdout.strip() == ("interrupted" if caught else "went on"), run.stderr
-    assert ("Exception ignored" in run.stderr) is not caught
+    assert run.stdout.strip() == "interrupted", run.stderr
+    assert "Exception ignored" not in run.stderr
+
+
+def test_a_stop_that_reaches_no_checkpoint_ends_the_run_and_removes_its_outputs(tmp_path):
+    """A run stuck where no checkpoint comes (here: sleeping with an output half-written) is
+    ended GRACE_SECONDS after the signal, with the signal's exit code and no file left."""
+    out = tmp_path / "out.txt"
+    script = f"""
+import os, signal, time
+from grainclass.atomic import atomic_output
+from grainclass.cli import signals
+signals.catch_stops()
+with atomic_output({str(out)!r}) as sink:
+    sink.write(b"half")
+    os.kill(os.getpid(), signal.SIGTERM)
+    time.sleep(60)
+"""
+    start = time.monotonic()
+    run = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=60)
+    assert run.returncode == 143, run.stderr
+    assert run.stderr == "grainclass: stopped by SIGTERM\n"
+    assert time.monotonic() - start < 30
+    assert list(tmp_path.iterdir()) == []
 
 
 def test_an_interrupt_just_after_the_rename_leaves_the_whole_file(tmp_path, monkeypatch):

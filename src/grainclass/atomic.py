@@ -19,6 +19,10 @@ _STOPS = {
     getattr(signal, name) for name in ("SIGINT", "SIGTERM", "SIGHUP") if hasattr(signal, name)
 }
 
+# The temporary files of the outputs being written, for a run ended at once to remove
+# (grainclass.cli.signals).
+_temporaries: set[str] = set()
+
 # Paths that name an open file descriptor of this process, whatever it is open on.
 _FD_ALIAS = re.compile(r"^/(dev/(stdout|stderr|fd/\d+)|proc/(self|\d+)/fd/\d+)$")
 
@@ -93,6 +97,7 @@ def atomic_output(path: str, binary_stdout_ok: bool = True) -> Iterator[BinaryIO
     except OSError as exc:
         _release_stops(held)
         raise OutputError(f"{path}: cannot write here ({exc.strerror})") from None
+    _temporaries.add(tmp)
     try:
         _release_stops(held)
         with _as_output_error(path):
@@ -111,6 +116,16 @@ def atomic_output(path: str, binary_stdout_ok: bool = True) -> Iterator[BinaryIO
         with contextlib.suppress(FileNotFoundError):
             os.unlink(tmp)
         raise
+    finally:
+        _temporaries.discard(tmp)
+
+
+def remove_temporaries() -> None:
+    """Remove the temporary files of every output being written: the process is about to end
+    without unwinding (a stop that reached no checkpoint)."""
+    for tmp in list(_temporaries):
+        with contextlib.suppress(OSError):
+            os.unlink(tmp)
 
 
 @contextmanager

@@ -25,6 +25,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+from grainclass import interrupts
 from grainclass.errors import CensusError, MissingDependencyError, OptionError, OutputError
 from grainclass.options import DEFAULT_CHUNK_SIZE
 from grainclass.plantri import CHECKS, plantri_count, plantri_version, run_plantri
@@ -413,7 +414,8 @@ def run_census(
     pending = set(futures)
     while pending:
         try:
-            done, pending = wait(pending, timeout=2.0, return_when="FIRST_COMPLETED")
+            interrupts.checkpoint()
+            done, pending = wait(pending, timeout=0.5, return_when="FIRST_COMPLETED")
         except TimeoutError:  # nothing finished: report the running parts' progress
             done = set()
         for future in done:

@@ -23,6 +23,8 @@ from collections.abc import Callable, Iterable, Iterator
 from concurrent.futures import Future, ThreadPoolExecutor
 from typing import TypeVar
 
+from grainclass import interrupts
+
 T = TypeVar("T")
 R = TypeVar("R")
 
@@ -106,13 +108,16 @@ def map_ordered(function: Callable[[T], R], items: Iterable[T]) -> Iterator[R]:
     exception is raised where its item's result would have come.
     """
     if _jobs == 1:
-        yield from map(function, items)
+        for item in items:
+            interrupts.checkpoint()
+            yield function(item)
         return
     pool = _pool("batch")
     pending: collections.deque[Future[R]] = collections.deque()
     iterator = iter(items)
     try:
         while True:
+            interrupts.checkpoint()
             try:
                 item = next(iterator)
             except StopIteration:

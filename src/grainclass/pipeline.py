@@ -14,6 +14,7 @@ from typing import TYPE_CHECKING, TypeVar
 
 import pyarrow as pa
 
+from grainclass import interrupts
 from grainclass.classification import classify
 from grainclass.errors import DataError, Remedy
 from grainclass.options import SHORTEST_BELT, ReadOptions
@@ -59,6 +60,7 @@ def prefetch(items: Iterable[T], depth: int = 2) -> Iterator[T]:
     worker.start()
     try:
         while True:
+            interrupts.checkpoint()
             item = slots.get()
             if item is _DONE:
                 return

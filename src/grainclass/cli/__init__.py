@@ -16,7 +16,7 @@ from contextlib import suppress
 
 import click
 
-from grainclass import __version__
+from grainclass import __version__, interrupts
 from grainclass.cli import output, signals
 from grainclass.cli.census import census_cmd
 from grainclass.cli.classify import classify_cmd
@@ -93,7 +93,7 @@ def main() -> None:
         click.echo("grainclass: interrupted", err=True)
         code = ExitCode.INTERRUPTED
         stopped = True
-    except signals.Stopped as stop:
+    except interrupts.Stopped as stop:
         click.echo(f"grainclass: stopped by {signal.Signals(stop.signum).name}", err=True)
         code = ExitCode.stopped_by(stop.signum)
         stopped = True

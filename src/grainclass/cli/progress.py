@@ -9,6 +9,8 @@ import time
 from collections.abc import Iterable, Iterator
 from typing import TYPE_CHECKING, TypeVar
 
+from grainclass import interrupts
+
 if TYPE_CHECKING:
     from grainclass.census import CensusProgress
 
@@ -32,6 +34,7 @@ class Progress:
     def wrap(self, tables: Iterable[T]) -> Iterator[T]:
         """Pass ``tables`` (tables or batches: anything with a length) through, counting."""
         for table in tables:
+            interrupts.checkpoint()
             self.grains += len(table)  # type: ignore[arg-type]
             now = time.perf_counter()
             if self.enabled and now - self._drawn > 0.2:

@@ -1,75 +1,80 @@
 """Stop signals: Ctrl-C, SIGTERM and SIGHUP undo what a command began, then end it.
 
-A stop raises an exception in the main thread (KeyboardInterrupt, or :class:`Stopped`), so that
-what a command has begun (a temporary output file) is undone on the way out; worker processes and
-busy threads are then let go, not waited for.
+A stop signal asks for a stop (:mod:`grainclass.interrupts`), which the run raises at its next
+checkpoint, between batches (KeyboardInterrupt, or :class:`~grainclass.interrupts.Stopped`), so
+that what a command has begun (a temporary output file, worker processes) is undone on the way
+out; busy threads are then let go, not waited for. A run that reaches no checkpoint within
+:data:`GRACE_SECONDS` (it is importing, reading a file whole, compiling a kernel) is ended
+from a thread of its own: its temporary outputs are removed and the process exits with the
+signal's code.
 """
 
 from __future__ import annotations
 
-import _thread
+import contextlib
+import os
 import signal
 import sys
+import threading
+import time
+
+from grainclass import interrupts
 
 _STOPS = ("SIGINT", "SIGTERM", "SIGHUP")  # SIGTERM and SIGHUP are not on Windows
+GRACE_SECONDS = 2.0
 
 _stopping = False  # set by the first stop signal, and once all is done
-
-
-class Stopped(BaseException):
-    """SIGTERM or SIGHUP, raised like Ctrl-C's KeyboardInterrupt."""
-
-    def __init__(self, signum: int) -> None:
-        super().__init__(signum)
-        self.signum = signum
+_done = threading.Event()  # set once the command is done, whether it stopped or not
 
 
 def stop(signum: int, frame: object) -> None:
-    """The handler of the stop signals: the first raises, later ones are let go.
+    """The handler of the stop signals: the first asks for a stop and starts the watch over it;
+    later ones are let go.
 
     While a run undoes what it began and waits for its threads, a second signal (``timeout``
-    sends one to the process, then one to its group; a second Ctrl-C) would cut that short, or,
-    once all is done, end the interpreter's shutdown in a traceback. Later signals are let go
-    here rather than set to be ignored, since processes started from here on would inherit
-    that."""
+    sends one to the process, then one to its group; a second Ctrl-C) would cut that short.
+    Later signals are let go here rather than set to be ignored, since processes started from
+    here on would inherit that."""
     global _stopping
     if _stopping:
         return
     _stopping = True
-    raise KeyboardInterrupt if signum == signal.SIGINT else Stopped(signum)
+    interrupts.request(signum)
+    threading.Thread(target=_end_unless_stopped, args=(signum,), daemon=True).start()
 
 
-def _lost_stop(unraisable: sys.UnraisableHookArgs) -> None:
-    """``sys.unraisablehook``: a stop that :func:`stop` raised where Python ignores exceptions
-    (a weakref's callback, a ``__del__`` run by the garbage collector) is lost, and with it every
-    later stop signal, which :func:`stop` lets go. The signal is sent again, from a thread of its
-    own, to be raised in the code that runs next (sent from here, it would be raised here again;
-    a ``threading.Thread`` waits for its start, and it would be raised in that wait)."""
-    global _stopping
-    exc = unraisable.exc_value
-    if not isinstance(exc, KeyboardInterrupt | Stopped):
-        sys.__unraisablehook__(unraisable)
-        return
-    _stopping = False
-    signum = exc.signum if isinstance(exc, Stopped) else signal.SIGINT
-    _thread.start_new_thread(signal.raise_signal, (signum,))
+def _end_unless_stopped(signum: int) -> None:
+    """End the process if, :data:`GRACE_SECONDS` after the stop was asked for, no checkpoint has
+    raised it: its temporary outputs go, and it exits as a stopped run does."""
+    deadline = time.monotonic() + GRACE_SECONDS
+    while time.monotonic() < deadline:
+        if _done.wait(0.05) or interrupts.raised():
+            return
+    from grainclass.atomic import remove_temporaries
+    from grainclass.cli.exit_codes import ExitCode
+
+    remove_temporaries()
+    name = signal.Signals(signum).name
+    said = "interrupted" if signum == signal.SIGINT else f"stopped by {name}"
+    with contextlib.suppress(OSError):
+        os.write(2, f"grainclass: {said}\n".encode())
+    os._exit(ExitCode.stopped_by(signum))
 
 
 def catch_stops() -> None:
-    """Stop signals raise (:func:`stop`), and are sent again if raised where Python ignores
-    exceptions (:func:`_lost_stop`)."""
+    """Stop signals ask for a stop (:func:`stop`)."""
     for name in _STOPS:
         # One ignored already stays so: nohup ignores SIGHUP for a run to outlive its terminal,
         # and a shell, SIGINT for a job it starts in the background.
         if hasattr(signal, name) and signal.getsignal(getattr(signal, name)) != signal.SIG_IGN:
             signal.signal(getattr(signal, name), stop)
-    sys.unraisablehook = _lost_stop
 
 
 def all_done() -> None:
     """From now on stop signals are let go: one would only end the shutdown in a traceback."""
     global _stopping
     _stopping = True
+    _done.set()
 
 
 def threads_busy() -> bool:
