@@ -3,7 +3,7 @@ PYTHON ?= python3
 VENV ?= .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed-stamp
-KERNELS := $(wildcard src/grainclass/_kernels/*.py) src/grainclass/_numba.py
+KERNELS := $(wildcard src/grainclass/_kernels/*.py src/grainclass/_kernels/*/*.py) src/grainclass/_numba.py
 KERNELS_STAMP := build/.kernels-stamp
 
 # Seeds of the Poisson-Voronoi data set that `make figures` draws.
