@@ -20,6 +20,12 @@ The pieces pass named tuples of arrays, each defined where it is made:
   neighbours in cyclic order; ``body.py``: those steps in order, for one body, into ``BodyOut``.
 - ``assemble.py``: every file's bodies into ``Grains`` and ``Surfaces``.
 
+A step called from one place is compiled into its caller (``@njit(inline="always")``): as a
+function of its own, numba would optimise it again inside every kernel that links it, and
+compile it once more for each literal constant it is first called with. Helpers that allocate
+nothing, called per line, facet or body, stay functions of their own (``njit_leaf``), without
+reference counting.
+
 A body's surface is built from *patches*, one per entry of its list of facets: in a periodic
 file a body may list a facet twice, once each way, where the cell meets its own image across
 it. Each patch sits at a lattice translation of its facet's own frame (the facet unwrapped

@@ -57,7 +57,8 @@ class Surfaces(NamedTuple):
     neighbours: np.ndarray
     """int32[neighbours]: the neighbours of each face (0-based faces of its grain)"""
     position: np.ndarray
-    """float64[corners, 3]: each corner's position"""
+    """float64[corners, 3]: each corner's position (x, y, z one after another as the grains
+    are kept; in rows once returned)"""
     corners: np.ndarray
     """int64[darts]: each patch's corners in order (rows of ``position``)"""
     loop_sizes: np.ndarray
@@ -87,7 +88,7 @@ def _assemble(entries, files):
     surfaces = Surfaces(
         np.empty(1024, np.int64),
         np.empty(4096, np.int32),
-        np.empty((1024, 3), np.float64),
+        np.empty(3 * 1024, np.float64),
         np.empty(4096, np.int64),
         np.empty(1024, np.int64),
         np.empty(1024, np.int64),
@@ -142,7 +143,7 @@ def _assemble(entries, files):
         Surfaces(
             surfaces.nbr_counts[:n_f],
             surfaces.neighbours[:n_nb],
-            surfaces.position[:n_pos],
+            surfaces.position[: 3 * n_pos].reshape((n_pos, 3)),
             surfaces.corners[:n_c],
             surfaces.loop_sizes[:n_loops],
             surfaces.loop_grain[:n_loops],
@@ -150,7 +151,7 @@ def _assemble(entries, files):
     )
 
 
-@njit(no_cpython_wrapper=True)
+@njit(inline="always")
 def _no_bodies(grains, g, f, entries, files):
     """Grain ``g``: file ``f``, which has no bodies, with what the reader's message needs: the
     line of its facets section (a film) and its first unreadable entry."""
@@ -163,7 +164,7 @@ def _no_bodies(grains, g, f, entries, files):
             grains.params[g, 1], grains.params[g, 2] = entries.kind[i], entries.line[i]
 
 
-@njit(no_cpython_wrapper=True)
+@njit(inline="always")
 def _keep(surfaces, filled, out, g):
     """``surfaces`` with grain ``g``'s from ``out`` after the ``filled`` ones (grown as
     needed); ``filled`` counts them in."""
@@ -176,10 +177,10 @@ def _keep(surfaces, filled, out, g):
     neighbours = _reserve(surfaces.neighbours, n_nb + nbrs)
     for k in range(nbrs):
         neighbours[n_nb + k] = out.neighbours[k]
-    position = _reserve(surfaces.position, n_pos + points)
+    position = _reserve(surfaces.position, 3 * (n_pos + points))
     for k in range(points):
         for x in range(3):
-            position[n_pos + k, x] = out.position[k, x]
+            position[3 * (n_pos + k) + x] = out.position[k, x]
     corners = _reserve(surfaces.corners, n_c + uses)
     for k in range(uses):
         corners[n_c + k] = out.corners[k] + n_pos
@@ -195,10 +196,10 @@ def _keep(surfaces, filled, out, g):
 
 @njit(no_cpython_wrapper=True)
 def _reserve(a, need):
-    """``a``, or a copy twice as long (in rows), so that it holds ``need`` rows."""
+    """``a``, or a copy twice as long, so that it holds ``need`` items."""
     if a.shape[0] >= need:
         return a
-    shape = (max(need, 2 * a.shape[0]), *a.shape[1:])
-    b = np.empty(shape, a.dtype)
-    b[: a.shape[0]] = a
+    b = np.empty(max(need, 2 * a.shape[0]), a.dtype)
+    for i in range(a.shape[0]):
+        b[i] = a[i]
     return b

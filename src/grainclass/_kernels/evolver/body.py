@@ -50,7 +50,7 @@ class BodyOut(NamedTuple):
     """int64[room]: each patch's number of corners"""
 
 
-@njit(no_cpython_wrapper=True)
+@njit(inline="always")
 def _new_out(tables):
     room = 2 * tables.sides.start[-1] + 1
     return BodyOut(

@@ -10,13 +10,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from grainclass._kernels.evolver.codes import (
-    BODY,
-    ENTRY_BAD,
-    ENTRY_SLOW,
-    FACET,
-    SLOW_VOLUME,
-)
+from grainclass._kernels.evolver.codes import ENTRY_BAD, ENTRY_SLOW, SLOW_VOLUME
 from grainclass._kernels.evolver.lexing import MINUS, PLUS, STAR, UNDERSCORE, _lower, _word_is
 from grainclass._kernels.evolver.numbers import _is_decimal, _parse_float, _parse_int
 from grainclass._numba import njit, njit_leaf
@@ -74,7 +68,7 @@ class TripleMarker(NamedTuple):
     """int64[words]: where each word ends in ``letters``"""
 
 
-@njit(no_cpython_wrapper=True)
+@njit(inline="always")
 def _new_entries(n, m):
     """Room for ``n`` entries and ``m`` listed ids."""
     return Entries(
@@ -91,7 +85,7 @@ def _new_entries(n, m):
     )
 
 
-@njit(no_cpython_wrapper=True)
+@njit(inline="always")
 def _first_entries(entries, n, m):
     """The first ``n`` entries and ``m`` ids."""
     return Entries(
@@ -108,7 +102,7 @@ def _first_entries(entries, n, m):
     )
 
 
-@njit(no_cpython_wrapper=True)
+@njit(inline="always")
 def _new_slow_numbers(n):
     return SlowNumbers(
         np.empty(n, np.int64),
@@ -119,14 +113,14 @@ def _new_slow_numbers(n):
     )
 
 
-@njit(no_cpython_wrapper=True)
+@njit(inline="always")
 def _noted(slow):
     """The slow numbers noted so far."""
     k = slow.count[0]
     return SlowNumbers(slow.entry[:k], slow.slot[:k], slow.start[:k], slow.end[:k], slow.count)
 
 
-@njit_leaf(no_cpython_wrapper=True)
+@njit_leaf(inline="always")
 def _slow_number(slow, entry, slot, s, e):
     """Note a number left to Python's float(): token ``buf[s:e]``, for ``slot`` of ``entry``."""
     k = slow.count[0]
@@ -180,16 +174,17 @@ def _edge_entry(buf, tokens, ntok, n, periodic, marker, entries):
 
 
 @njit_leaf(no_cpython_wrapper=True)
-def _list_entry(buf, tokens, ntok, n, kind, entries, m, slow):
-    """A facet's or a body's line: its signed ids into ``entries.ids[m:]`` (three or more for a
-    facet, one or more for a body), and a body's ``volume``. Returns ``m`` after the ids."""
+def _list_entry(buf, tokens, ntok, n, body, entries, m, slow):
+    """A facet's line, or a body's if ``body``: its signed ids into ``entries.ids[m:]`` (three
+    or more for a facet, one or more for a body), and a body's ``volume``. Returns ``m`` after
+    the ids."""
     status = entries.status
     entries.first[n] = m
     ok, m = _leading_ids(buf, tokens, ntok, entries.ids, m)
     entries.last[n] = m
-    if not ok or m - entries.first[n] < (3 if kind == FACET else 1):
+    if not ok or m - entries.first[n] < (1 if body else 3):
         status[n] = ENTRY_BAD
-    if kind != BODY:
+    if not body:
         return m
     entries.xyz[n, 0] = np.nan
     starts, ends = tokens.starts, tokens.ends

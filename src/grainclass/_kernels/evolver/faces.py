@@ -39,7 +39,7 @@ class Boundaries(NamedTuple):
     """int64[corners]"""
 
 
-@njit(no_cpython_wrapper=True)
+@njit(inline="always")
 def _across(patches, j, facets, scratch):
     """The bodies across each patch of body ``j`` and whether it is on the sample's boundary
     (the first two fields of :class:`Across`)."""
@@ -63,7 +63,7 @@ def _across(patches, j, facets, scratch):
     return bodies, outside
 
 
-@njit(no_cpython_wrapper=True)
+@njit(inline="always")
 def _normals(darts, corners, position, marked):
     """Each patch's unit normal from its corners' positions (zero where ``marked``: the triple
     lines are given, and the normals are not needed)."""
@@ -91,7 +91,7 @@ def _root(parent, k):
     return k
 
 
-@njit(no_cpython_wrapper=True)
+@njit(inline="always")
 def _join_faces(darts, across, tables):
     """The face of each patch: patches joined across edges that are not triple lines (not
     marked, on at most two facets of the file), where the same bodies lie across both and, on
@@ -134,7 +134,7 @@ def _join_faces(darts, across, tables):
     return face, n_faces
 
 
-@njit(no_cpython_wrapper=True)
+@njit(inline="always")
 def _boundaries(darts, corners, face, n_faces):
     """The darts between two faces, by face, and the corners' numbers of triple lines:
     ``(boundaries, triple line segments)``."""
@@ -161,7 +161,7 @@ def _boundaries(darts, corners, face, n_faces):
     return Boundaries(start, dart, degree), separating
 
 
-@njit(no_cpython_wrapper=True)
+@njit(inline="always")
 def _walk_faces(darts, corners, face, n_faces, out):
     """Walk each face's boundary from a corner: its neighbours in cyclic order, into
     ``out.nbr_counts`` and ``out.neighbours``. Returns ``(GRAIN_ code, neighbours)``."""

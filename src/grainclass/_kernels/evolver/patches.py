@@ -75,7 +75,7 @@ class BodyEdges(NamedTuple):
     """int64[k]: the first of them"""
 
 
-@njit(no_cpython_wrapper=True)
+@njit(inline="always")
 def _patches(entries, entry, facet_map, scratch, stamp):
     """The patches of the body whose line is ``entry``; notes in ``scratch`` how many times,
     and by which patches, the body lists each facet."""
@@ -143,7 +143,7 @@ def _check_patches(patches, periodic, tables, scratch, params):
     return GRAIN_OK
 
 
-@njit(no_cpython_wrapper=True)
+@njit(inline="always")
 def _darts(patches, sides, scratch, stamp):
     """The darts of the patches, the body's edges and whether one has more than two darts:
     ``(darts, edges, ambiguous)``. The second dart on an edge is the first's partner."""

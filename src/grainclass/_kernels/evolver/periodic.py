@@ -67,7 +67,7 @@ def _shifted(geometry, entry, off, out):
         )
 
 
-@njit(no_cpython_wrapper=True)
+@njit(inline="always")
 def _pair_ambiguous(patches, darts, body_edges, tables, scratch, stamp, geometry, params):
     """GRAIN_OK with the darts of edges that have more than two paired off by the geometry,
     taking the body's list of facets as outward, then as inward; or why they do not pair."""
@@ -192,7 +192,7 @@ def _pair_around(rule, stamp, patches, darts, edge_darts, tables, scratch, geome
     return True, -1, -1
 
 
-@njit(no_cpython_wrapper=True)
+@njit(inline="always")
 def _translations(darts, edge_shift):
     """Each patch's translation, across the edges it shares with its partners: ``(shift,
     pieces, a dart where two ways around disagree or -1)``; the patches of each connected
@@ -232,7 +232,7 @@ def _translations(darts, edge_shift):
     return shift, pieces, -1
 
 
-@njit(no_cpython_wrapper=True)
+@njit(inline="always")
 def _corners(darts, shift, scratch, stamp, tail):
     """The corners of the patches placed by ``shift``, each dart's tail corner written into
     ``tail``."""
@@ -269,7 +269,7 @@ def _corners(darts, shift, scratch, stamp, tail):
     return Corners(key[:n], offset[:n], tail, head)
 
 
-@njit(no_cpython_wrapper=True)
+@njit(inline="always")
 def _place_corners(corners, vertices, geometry, position):
     """Each corner's position into ``position``; returns -1, or the key of a vertex that has
     no coordinates."""

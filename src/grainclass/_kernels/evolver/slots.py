@@ -45,7 +45,7 @@ def _hash(x, mask):
     return np.int64((h ^ (h >> np.uint64(31))) & np.uint64(mask))
 
 
-@njit(no_cpython_wrapper=True)
+@njit(inline="always")
 def _new_map(n, most):
     """An empty map of up to ``n`` ids, ids up to ``most`` held directly (when ``most`` is not
     far beyond ``n``)."""
@@ -81,13 +81,13 @@ def _slot(table, x, insert):
 
 
 @njit(no_cpython_wrapper=True)
-def _slots(ids, extra):
-    """A map with a slot for each distinct id of ``ids`` (room for ``extra`` more), and the
-    slot of each."""
+def _slots(ids, room):
+    """A map with a slot for each distinct id of ``ids``, with room for ``room`` ids in all,
+    and the slot of each."""
     most = -1
     for i in range(ids.shape[0]):
         most = max(most, ids[i])
-    table = _new_map(ids.shape[0] + extra, most)
+    table = _new_map(room, most)
     slot = np.empty(ids.shape[0], np.int64)
     for i in range(ids.shape[0]):
         slot[i] = _slot(table, ids[i], True)

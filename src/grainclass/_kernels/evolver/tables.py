@@ -117,9 +117,9 @@ def _file_tables(entries, f0, f1):
     """The tables of the file whose entries are ``f0:f1``."""
     v_rows, e_rows, f_rows, b_rows = _rows_by_kind(entries.kind, f0, f1)
     # Vertices (room for the ids that edges name and no line defines), edges.
-    vertex_map, v_slot = _slots(entries.id[v_rows], 2 * e_rows.shape[0])
+    vertex_map, v_slot = _slots(entries.id[v_rows], v_rows.shape[0] + 2 * e_rows.shape[0])
     n_defined = vertex_map.count[0]
-    edge_map, e_slot = _slots(entries.id[e_rows], 0)
+    edge_map, e_slot = _slots(entries.id[e_rows], e_rows.shape[0])
     edge_lines = _defined(e_rows, e_slot, edge_map.count[0], entries)
     tail, head = _edge_ends(edge_lines.entry, entries, vertex_map)
     vertices = _vertex_keys(v_rows, v_slot, vertex_map, n_defined, entries)
@@ -128,7 +128,7 @@ def _file_tables(entries, f0, f1):
         edge_map, edge_lines.id, edge_lines.entry, edge_lines.bad, tail, head, wrap, triple
     )
     # Facets and their sides.
-    facet_map, f_slot = _slots(entries.id[f_rows], 0)
+    facet_map, f_slot = _slots(entries.id[f_rows], f_rows.shape[0])
     facet_lines = _defined(f_rows, f_slot, facet_map.count[0], entries)
     sides, state = _sides(facet_lines.entry, entries, edges)
     uses = _edge_uses(edge_map.count[0], sides, state)
@@ -144,7 +144,7 @@ def _file_tables(entries, f0, f1):
     return FileTables(vertices, edges, uses, facets, sides, bodies, marked)
 
 
-@njit(no_cpython_wrapper=True)
+@njit(inline="always")
 def _rows_by_kind(kind, f0, f1):
     """The entries of each kind among ``f0:f1``, in order: vertices, edges, facets, bodies."""
     counts = np.zeros(4, np.int64)
@@ -171,7 +171,7 @@ def _rows_by_kind(kind, f0, f1):
     return rows
 
 
-@njit(no_cpython_wrapper=True)
+@njit(inline="always")
 def _edge_ends(edge_entry, entries, vertex_map):
     """The keys of each edge's tail and head (-1: the edge is not defined). Edges may name
     vertices without a line: they get keys past the vertices' slots."""
@@ -186,7 +186,7 @@ def _edge_ends(edge_entry, entries, vertex_map):
     return tail, head
 
 
-@njit(no_cpython_wrapper=True)
+@njit(inline="always")
 def _vertex_keys(v_rows, v_slot, vertex_map, n_defined, entries):
     """Each vertex key's id and lines; keys from ``n_defined`` on are ids that only edges
     name."""
@@ -200,7 +200,7 @@ def _vertex_keys(v_rows, v_slot, vertex_map, n_defined, entries):
     return vertices
 
 
-@njit(no_cpython_wrapper=True)
+@njit(inline="always")
 def _edge_marks(edge_entry, entries):
     """Each edge's wrap marks and triple-line mark (none for an edge without a line)."""
     ne = edge_entry.shape[0]
@@ -216,7 +216,7 @@ def _edge_marks(edge_entry, entries):
     return wrap, triple
 
 
-@njit(no_cpython_wrapper=True)
+@njit(inline="always")
 def _sides(facet_entry, entries, edges):
     """The sides of each facet that has a line, and each facet's state (see
     :class:`Facets`)."""
@@ -287,7 +287,7 @@ def _facet_sides(s, ids, first, edges, sides):
     return 0
 
 
-@njit(no_cpython_wrapper=True)
+@njit(inline="always")
 def _edge_uses(ne, sides, state):
     """The sides on each edge, of the facets whose state is 0."""
     count = np.zeros(ne, np.int64)
@@ -310,11 +310,11 @@ def _edge_uses(ne, sides, state):
     return EdgeUses(count, start, side)
 
 
-@njit(no_cpython_wrapper=True)
+@njit(inline="always")
 def _bodies(b_rows, entries):
     """The bodies, in the order of their first line: each one's last line, and whether any of
     its lines cannot be read."""
-    body_map, b_slot = _slots(entries.id[b_rows], 0)
+    body_map, b_slot = _slots(entries.id[b_rows], b_rows.shape[0])
     nb = body_map.count[0]
     last = np.empty(nb, np.int64)
     any_bad = np.zeros(nb, np.bool_)
@@ -326,7 +326,7 @@ def _bodies(b_rows, entries):
     return Bodies(last, any_bad)
 
 
-@njit(no_cpython_wrapper=True)
+@njit(inline="always")
 def _listers(bodies, entries, facet_map):
     """The bodies that list each facet: how many times in all, and the first three."""
     nf = facet_map.count[0]
@@ -364,7 +364,7 @@ class Scratch(NamedTuple):
     """the last corner made of the vertex (-1: none)"""
 
 
-@njit(no_cpython_wrapper=True)
+@njit(inline="always")
 def _new_scratch(tables):
     nf = tables.facets.id.shape[0]
     ne = tables.edges.id.shape[0]

@@ -147,18 +147,18 @@ def _tokenize(buf, file_starts, marker):
         np.empty(longest // 2 + 2, np.int64),
         np.ones(1, np.int64),
     )
-    n = 0
-    m = 0
+    filled = np.zeros(2, np.int64)  # entries, ids
     for f in range(n_files):
-        n, m = _tokenize_file(buf, file_starts, f, marker, tokens, out, n, m)
-    return Tokens(_first_entries(entries, n, m), _noted(slow), files)
+        _tokenize_file(buf, file_starts, f, marker, tokens, out, filled)
+    return Tokens(_first_entries(entries, filled[0], filled[1]), _noted(slow), files)
 
 
-@njit(no_cpython_wrapper=True)
-def _tokenize_file(buf, file_starts, f, marker, tokens, out, n, m):
-    """File ``f`` into ``out``: its entries from row ``n`` on and their ids from ``m`` on, its
-    status and periods. Returns ``(n, m)`` after them."""
+@njit_leaf(no_cpython_wrapper=True)
+def _tokenize_file(buf, file_starts, f, marker, tokens, out, filled):
+    """File ``f`` into ``out``: its entries and their ids after the ``filled`` ones, which it
+    counts in; its status and periods."""
     entries, slow, files = out
+    n, m = filled[0], filled[1]
     start, end = file_starts[f], file_starts[f + 1]
     if end - start >= 3 and buf[start] == 0xEF and buf[start + 1] == 0xBB:
         start += 3 if buf[start + 2] == 0xBF else 0
@@ -188,7 +188,7 @@ def _tokenize_file(buf, file_starts, f, marker, tokens, out, n, m):
             elif section == EDGE:
                 _edge_entry(buf, tokens, ntok, n, files.periodic[f], marker, entries)
             else:
-                m = _list_entry(buf, tokens, ntok, n, section, entries, m, slow)
+                m = _list_entry(buf, tokens, ntok, n, section == BODY, entries, m, slow)
             n += 1
             continue
         word = _keyword(buf, s0, e0)
@@ -216,7 +216,7 @@ def _tokenize_file(buf, file_starts, f, marker, tokens, out, n, m):
         elif not header_checked:
             header = _header_line(header, word, number, buf, tokens, ntok)
     files.entry_end[f] = n
-    return n, m
+    filled[0], filled[1] = n, m
 
 
 @njit_leaf(no_cpython_wrapper=True)
