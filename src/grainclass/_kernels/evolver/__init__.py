@@ -21,10 +21,11 @@ The pieces pass named tuples of arrays, each defined where it is made:
 - ``assemble.py``: every file's bodies into ``Grains`` and ``Surfaces``.
 
 A step called from one place is compiled into its caller (``@njit(inline="always")``): as a
-function of its own, numba would optimise it again inside every kernel that links it, and
-compile it once more for each literal constant it is first called with. Helpers that allocate
-nothing, called per line, facet or body, stay functions of their own (``njit_leaf``), without
-reference counting.
+function of its own, numba would optimise it again inside every kernel that links it, compile
+it once more for each literal constant it is first called with, and, called per line or per
+facet, be handed every array of its named tuples anew, each as several scalars. The loops over
+lines and facets run in kernels that allocate nothing (``njit_leaf``), so that the arrays they
+touch are not reference-counted.
 
 A body's surface is built from *patches*, one per entry of its list of facets: in a periodic
 file a body may list a facet twice, once each way, where the cell meets its own image across

@@ -128,7 +128,7 @@ def _slow_number(slow, entry, slot, s, e):
     slow.count[0] = k + 1
 
 
-@njit_leaf(no_cpython_wrapper=True)
+@njit_leaf(inline="always")
 def _vertex_entry(buf, tokens, ntok, n, entries, slow):
     """A vertex line's coordinates (tokens 1 to 3) into ``entries.xyz[n]``."""
     status = entries.status
@@ -146,7 +146,7 @@ def _vertex_entry(buf, tokens, ntok, n, entries, slow):
             _slow_number(slow, n, k, s, e)
 
 
-@njit_leaf(no_cpython_wrapper=True)
+@njit_leaf(inline="always")
 def _edge_entry(buf, tokens, ntok, n, periodic, marker, entries):
     """An edge line: tail and head ids, three wrap marks (a periodic file's), the triple-line
     mark (``marker``'s words among the attributes)."""
@@ -173,7 +173,7 @@ def _edge_entry(buf, tokens, ntok, n, periodic, marker, entries):
                 break
 
 
-@njit_leaf(no_cpython_wrapper=True)
+@njit_leaf(inline="always")
 def _list_entry(buf, tokens, ntok, n, body, entries, m, slow):
     """A facet's line, or a body's if ``body``: its signed ids into ``entries.ids[m:]`` (three
     or more for a facet, one or more for a body), and a body's ``volume``. Returns ``m`` after

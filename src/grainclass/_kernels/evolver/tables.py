@@ -237,14 +237,20 @@ def _sides(facet_entry, entries, edges):
         np.zeros((n, 3), np.int64),
     )
     state = np.zeros(nf, np.int64)
-    for s in range(nf):
-        i = facet_entry[s]
-        if i >= 0:
-            state[s] = _facet_sides(s, entries.ids, entries.first[i], edges, sides)
+    _fill_sides(facet_entry, entries, edges, sides, state)
     return sides, state
 
 
 @njit_leaf(no_cpython_wrapper=True)
+def _fill_sides(facet_entry, entries, edges, sides, state):
+    """The sides and state of each facet that has a line."""
+    for s in range(facet_entry.shape[0]):
+        i = facet_entry[s]
+        if i >= 0:
+            state[s] = _facet_sides(s, entries.ids, entries.first[i], edges, sides)
+
+
+@njit_leaf(inline="always")
 def _facet_sides(s, ids, first, edges, sides):
     """The sides of facet slot ``s``, whose line lists ``ids[first:]``: returns its state."""
     a = sides.start[s]
