@@ -6,7 +6,7 @@ STAMP := $(VENV)/.installed-stamp
 # Where setup.py finds Voro++ (None: nowhere), rewritten only when that changes: Voro++
 # installed, moved or removed since the last install rebuilds grainclass._voro.
 VORO_FOUND := $(VENV)/.voro-found
-KERNELS := $(wildcard src/grainclass/_kernels/*.py) src/grainclass/_numba.py
+KERNELS := $(wildcard src/grainclass/_kernels/*.py src/grainclass/_kernels/*/*.py) src/grainclass/_numba.py
 KERNELS_STAMP := build/.kernels-stamp
 
 # Seeds of the Poisson-Voronoi data set that `make figures` draws.

@@ -13,7 +13,8 @@ from hypothesis import strategies as st
 
 from conftest import EVOLVER_DATA
 from grainclass import classify, read_dataset
-from grainclass._kernels.evolver import ENTRY_BAD, ENTRY_OK, _parse_float
+from grainclass._kernels.evolver.codes import ENTRY_BAD, ENTRY_OK
+from grainclass._kernels.evolver.numbers import _parse_float
 from grainclass.readers.sniffing import sniff
 
 TWO_CUBES = (EVOLVER_DATA / "two_cubes.fe").read_text()

@@ -16,7 +16,7 @@ its ``volume``). A cell that meets its own periodic image across a facet lists t
 each way: the two are two patches, at two places of the cell, and where such a cell uses an
 edge more than twice, the facets around the edge say which patches meet there.
 
-The datafiles are read over their bytes by compiled kernels (``_kernels/evolver.py``), many
+The datafiles are read over their bytes by compiled kernels (``_kernels/evolver/``), many
 files at a time; the kernels return codes, which this module turns into messages.
 """
 
@@ -29,7 +29,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from grainclass._kernels import evolver as kernels
+from grainclass._kernels.evolver import codes
+from grainclass._kernels.evolver.assemble import _assemble
+from grainclass._kernels.evolver.entries import TripleMarker
+from grainclass._kernels.evolver.tokenize import Tokens, _tokenize
 from grainclass.batch import GrainBatch, no_body_has
 from grainclass.errors import InputError
 from grainclass.geometry import polytope_measures
@@ -176,62 +179,47 @@ def _read_part(paths: list[str], triple_edges: tuple[str, str]) -> _Part:
         if why:  # UTF-16, compressed, Parquet: said so, not read as a file of no bodies
             refused[k] = why
     marker_words = [w.lower().encode() for w in " ".join(triple_edges).split()]
-    marker = np.frombuffer(b"".join(marker_words), np.uint8)
-    marker_ends = np.cumsum([len(w) for w in marker_words]).astype(np.int64)
-    tokens = kernels._tokenize(buf, starts, marker, marker_ends)
-    (kind, ident, line_of, status, first, last, xyz, wraps, flag, ids) = tokens[:10]
-    file_status, periodic, periods = tokens[14], tokens[17], tokens[18]
-    entry_start, entry_end, facets_line = tokens[19:22]
-    if len(tokens[10]):
+    marker = TripleMarker(
+        np.frombuffer(b"".join(marker_words), np.uint8),
+        np.cumsum([len(w) for w in marker_words]).astype(np.int64),
+    )
+    tokens = _tokenize(buf, starts, marker)
+    if len(tokens.slow.entry):
         _slow_numbers(buf, tokens)
     for k in refused:
-        file_status[k] = -1
+        tokens.files.status[k] = -1
     with np.errstate(over="ignore"):  # the ids' hash wraps modulo 2**64 (seen without the JIT)
-        grains = kernels._assemble(
-            kind,
-            ident,
-            line_of,
-            status,
-            first,
-            last,
-            xyz,
-            wraps,
-            flag,
-            ids,
-            file_status,
-            periodic,
-            periods,
-            entry_start,
-            entry_end,
-            facets_line,
-        )
-    g_file, g_body, g_line, g_code, g_params, g_volume, g_given, g_boundary = grains[:8]
-    g_faces, nbr_counts, neighbors, position, corners, loop_sizes, loop_grain = grains[8:]
+        grains, surfaces = _assemble(tokens.entries, tokens.files)
+    g_file, g_body, g_code, g_params = grains.file, grains.body, grains.code, grains.params
+    g_faces = grains.n_faces
+    nbr_counts, neighbors = surfaces.nbr_counts, surfaces.neighbours
     n = len(g_file)
-    loop_offsets = np.zeros(len(loop_sizes) + 1, np.int64)
-    np.cumsum(loop_sizes, out=loop_offsets[1:])
-    volume, area = polytope_measures(position, corners, loop_offsets, loop_grain, n)
+    loop_offsets = np.zeros(len(surfaces.loop_sizes) + 1, np.int64)
+    np.cumsum(surfaces.loop_sizes, out=loop_offsets[1:])
+    volume, area = polytope_measures(
+        surfaces.position, surfaces.corners, loop_offsets, surfaces.loop_grain, n
+    )
     volume = np.abs(volume)
-    ok = g_code == kernels.GRAIN_OK
+    ok = g_code == codes.GRAIN_OK
     volume[~ok] = np.nan
     area[~ok] = np.nan
-    given = ok & g_given
-    volume[given] = g_volume[given]
+    given = ok & grains.given
+    volume[given] = grains.volume[given]
     rows_of_file = np.bincount(g_file, minlength=len(paths))
     stems = [path.rsplit("/", 1)[-1].removesuffix(".fe") for path in paths]
     grain_id = [
         stems[f] if rows_of_file[f] == 1 else str(b)
         for f, b in zip(g_file.tolist(), g_body.tolist(), strict=True)
     ]
-    line = g_line.copy()
+    line = grains.line.copy()
     errors: dict[int, str] = {}
     for g in np.flatnonzero(~ok | given).tolist():
         f, body, code = int(g_file[g]), int(g_body[g]), int(g_code[g])
-        if code == kernels.GRAIN_FILE:
+        if code == codes.GRAIN_FILE:
             message, line[g] = _file_message(f, buf, tokens, refused)
-        elif code == kernels.GRAIN_NO_BODIES:
+        elif code == codes.GRAIN_NO_BODIES:
             message, line[g] = _no_bodies(g_params[g])
-        elif code == kernels.GRAIN_OK:
+        elif code == codes.GRAIN_OK:
             message = _volume_problem(body, float(volume[g]), float(area[g]))
         else:
             message = _message(code, body, g_params[g].tolist())
@@ -260,60 +248,60 @@ def _read_part(paths: list[str], triple_edges: tuple[str, str]) -> _Part:
         neighbors=neighbors,
         volume=volume,
         area=area,
-        boundary=g_boundary,
+        boundary=grains.boundary,
         errors=errors,
     )
 
 
-def _slow_numbers(buf: np.ndarray, tokens: tuple) -> None:
+def _slow_numbers(buf: np.ndarray, tokens: Tokens) -> None:
     """Numbers the tokenizer leaves to Python's float() (many digits, underscores, digits
     outside ASCII): read in place; an entry with one that float() refuses cannot be read."""
-    status, xyz = tokens[3], tokens[6]
-    slow_entry, slow_slot, slow_s, slow_e = tokens[10:14]
-    periods = tokens[18]
+    status, xyz = tokens.entries.status, tokens.entries.xyz
+    slow = tokens.slow
+    periods = tokens.files.periods
     for entry, slot, s, e in zip(
-        slow_entry.tolist(), slow_slot.tolist(), slow_s.tolist(), slow_e.tolist(), strict=True
+        slow.entry.tolist(), slow.slot.tolist(), slow.start.tolist(), slow.end.tolist(), strict=True
     ):
         text = bytes(buf[s:e]).decode("utf-8", "replace")
         try:
             value = float(text)
         except ValueError:
-            if slot < kernels.SLOW_PERIOD:
-                status[entry] = kernels.ENTRY_BAD
+            if slot < codes.SLOW_PERIOD:
+                status[entry] = codes.ENTRY_BAD
             continue
-        if slot >= kernels.SLOW_PERIOD:
-            k = slot - kernels.SLOW_PERIOD
+        if slot >= codes.SLOW_PERIOD:
+            k = slot - codes.SLOW_PERIOD
             periods[entry, k // 3, k % 3] = value
         else:
-            xyz[entry, 0 if slot == kernels.SLOW_VOLUME else slot] = value
-            if status[entry] == kernels.ENTRY_SLOW:
-                status[entry] = kernels.ENTRY_OK
-    status[status == kernels.ENTRY_SLOW] = kernels.ENTRY_OK
+            xyz[entry, 0 if slot == codes.SLOW_VOLUME else slot] = value
+            if status[entry] == codes.ENTRY_SLOW:
+                status[entry] = codes.ENTRY_OK
+    status[status == codes.ENTRY_SLOW] = codes.ENTRY_OK
 
 
-def _file_message(f: int, buf: np.ndarray, tokens: tuple, refused: dict[int, str]):
+def _file_message(f: int, buf: np.ndarray, tokens: Tokens, refused: dict[int, str]):
     """(message, line) for a file the tokenizer did not read."""
     if f in refused:
         return refused[f], 1
-    file_status, file_line, file_aux = tokens[14], tokens[15], tokens[16]
-    code, line = int(file_status[f]), int(file_line[f])
-    aux = file_aux[f].tolist()
-    if code == kernels.FILE_LONG_ID:
+    files = tokens.files
+    code, line = int(files.status[f]), int(files.line[f])
+    aux = files.aux[f].tolist()
+    if code == codes.FILE_LONG_ID:
         token = bytes(buf[aux[1] : aux[1] + 20]).decode("utf-8", "replace")
         return f"{ENTRY_NAMES[aux[0]]} id {token}... is too long", line
-    if code == kernels.FILE_PERIODS:
+    if code == codes.FILE_PERIODS:
         return "periods needs three rows of three numbers", line
-    if code == kernels.FILE_2D:
+    if code == codes.FILE_2D:
         model = "string model, " if aux[0] else ""
         return f"a 2D file: {_THREE_D} (this is a {model}space_dimension 2)", line
-    if code == kernels.FILE_STRING:
+    if code == codes.FILE_STRING:
         return (
             f"a string model: {_THREE_D} (a string model's bodies are areas bounded by edges)",
             line,
         )
-    if code == kernels.FILE_SPACE:
+    if code == codes.FILE_SPACE:
         return f"a file in {aux[0]}-space: {_THREE_D} (this is space_dimension {aux[0]})", line
-    if code == kernels.FILE_SIMPLEX:
+    if code == codes.FILE_SIMPLEX:
         return (
             "facets given by their vertices (simplex_representation): grainclass reads facets "
             "given by their edges",
@@ -340,62 +328,62 @@ def _no_bodies(params: np.ndarray) -> tuple[str, int]:
 def _message(code: int, body: int, params: list[int]) -> str:
     """Why body ``body`` is not a grain, from its GRAIN_ code and params."""
     a, b, c, d, e = params
-    if code == kernels.GRAIN_BODY_LINE:
+    if code == codes.GRAIN_BODY_LINE:
         return "cannot read this body line"
-    if code == kernels.GRAIN_UNDEFINED:
+    if code == codes.GRAIN_UNDEFINED:
         what = f"{ENTRY_NAMES[a]} {b}"
         if e:
             return f"body {body}: cannot read the line of its {what} (line {e})"
         user = ("its list of facets", f"facet {d}", f"edge {d}")[c]
         return f"body {body}: {user} names {what}, which the file does not define"
-    if code == kernels.GRAIN_TWICE:
+    if code == codes.GRAIN_TWICE:
         return (
             f"body {body} lists facet {a} twice: a body lies on both sides of a facet only "
             "where it touches its own periodic image, and this file is not periodic (is its "
             "line cut, or the facet a wall inside the body?)"
         )
-    if code == kernels.GRAIN_TWICE_SAME:
+    if code == codes.GRAIN_TWICE_SAME:
         times = "twice the same way" if b == 2 else f"{b} times"
         return (
             f"body {body} lists facet {a} {times}: a body lists a facet once, or once each way "
             "where it touches its own periodic image across it (is its line cut, or a sign "
             "wrong?)"
         )
-    if code == kernels.GRAIN_FACET_OPEN:
+    if code == codes.GRAIN_FACET_OPEN:
         return (
             f"body {body}: facet {a} is not a closed loop of edges: its edge {b} does not start "
             "where the edge before it ends"
         )
-    if code == kernels.GRAIN_FACET_WRAPS:
+    if code == codes.GRAIN_FACET_WRAPS:
         return (
             f"body {body}: facet {a} goes around the periodic box: the wrap marks of its edges "
             "do not add up to none"
         )
-    if code == kernels.GRAIN_NOT_CLOSED:
+    if code == codes.GRAIN_NOT_CLOSED:
         return f"not a closed surface: edge {a} lies on {plural(b, 'facet')} of body {body}"
-    if code == kernels.GRAIN_ORIENTATION:
+    if code == codes.GRAIN_ORIENTATION:
         return (
             f"not an oriented surface: facets {a} and {b} of body {body} both run along edge "
             f"{c} the same way (a sign in its list of facets is wrong)"
         )
-    if code == kernels.GRAIN_UNPAIRED:
+    if code == codes.GRAIN_UNPAIRED:
         return (
             f"not a closed surface: body {body} uses edge {a} {b} times (where it touches its "
             "own periodic image), and its facets around the edge do not pair off, once each way"
         )
-    if code == kernels.GRAIN_AROUND:
+    if code == codes.GRAIN_AROUND:
         return (
             f"not a sphere: unwrapped across the periodic box, the surface of body {body} does "
             f"not close up at edge {a} (a cell that goes around the box)"
         )
-    if code == kernels.GRAIN_EULER:
+    if code == codes.GRAIN_EULER:
         return (
             f"not a sphere: the surface of body {body} has vertices - edges + facets = {a}, "
             "not 2 (a vertex where it touches itself, or a handle)"
         )
-    if code == kernels.GRAIN_PIECES:
+    if code == codes.GRAIN_PIECES:
         return "not a sphere: the surface is in more than one piece"
-    if code == kernels.GRAIN_NO_TRIPLE:
+    if code == codes.GRAIN_NO_TRIPLE:
         return f"body {body} has no triple lines: mark them (--triple-edges)"
     return f"face {a} is not a disc: its boundary has more than one loop"
 
