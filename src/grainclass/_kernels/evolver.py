@@ -93,12 +93,12 @@ _CLASS[[NEWLINE, 11, 12, RETURN, 28, 29, 30]] = C_BREAK
 _CLASS[SLASH], _CLASS[BACKSLASH], _CLASS[HASH] = C_SLASH, C_BACKSLASH, C_HASH
 
 
-@njit_leaf(no_cpython_wrapper=True)
+@njit_leaf
 def _lower(c):
     return c + 32 if 65 <= c <= 90 else c
 
 
-@njit_leaf(no_cpython_wrapper=True)
+@njit_leaf
 def _word_is(buf, s, e, word):
     """Whether ``buf[s:e]`` is ``word`` (lower case) in any case."""
     if e - s != word.shape[0]:
@@ -109,7 +109,7 @@ def _word_is(buf, s, e, word):
     return i == e - s
 
 
-@njit_leaf(no_cpython_wrapper=True)
+@njit_leaf
 def _after_break(buf, p, end):
     """The position after the line break at ``p`` (\\r\\n is one break)."""
     if buf[p] == RETURN and p + 1 < end and buf[p + 1] == NEWLINE:
@@ -117,7 +117,7 @@ def _after_break(buf, p, end):
     return p + 1
 
 
-@njit_leaf(no_cpython_wrapper=True)
+@njit_leaf
 def _line_end(buf, p, end):
     """The first line break from ``p`` on (or ``end``)."""
     while p < end and _CLASS[buf[p]] != C_BREAK:
@@ -125,7 +125,7 @@ def _line_end(buf, p, end):
     return p
 
 
-@njit_leaf(no_cpython_wrapper=True)
+@njit_leaf
 def _continues(buf, p, end):
     """Whether a backslash before ``p`` continues its line: only blanks, or a // comment, follow
     it on the line."""
@@ -136,7 +136,7 @@ def _continues(buf, p, end):
     return buf[p] == SLASH and p + 1 < end and buf[p + 1] == SLASH
 
 
-@njit_leaf(no_cpython_wrapper=True)
+@njit_leaf
 def _comment_at(buf, p, end, last_close):
     """Whether a comment starts at ``p``: ``//``, or a ``/*`` that closes."""
     if p + 1 >= end or buf[p] != SLASH:
@@ -144,7 +144,7 @@ def _comment_at(buf, p, end, last_close):
     return buf[p + 1] == SLASH or (buf[p + 1] == STAR and p + 2 <= last_close)
 
 
-@njit_leaf(no_cpython_wrapper=True)
+@njit_leaf
 def _special(buf, p, end, last_close):
     """Whether the byte at ``p`` is not part of a token: a blank, a line break, a comment's
     start, or a backslash that joins its line to the next."""
@@ -158,7 +158,7 @@ def _special(buf, p, end, last_close):
     return True
 
 
-@njit_leaf(no_cpython_wrapper=True)
+@njit_leaf
 def _lex_line(buf, p, end, last_close, tok_s, tok_e, line):
     """The tokens of the logical line at ``p`` into ``tok_s``/``tok_e``: ``(p after it, tokens,
     its first line number, at end of file)``; ``line[0]`` counts physical lines.
@@ -217,7 +217,7 @@ def _lex_line(buf, p, end, last_close, tok_s, tok_e, line):
     return p, ntok, first, True
 
 
-@njit_leaf(no_cpython_wrapper=True)
+@njit_leaf
 def _last_close(buf, start, end):
     """Where the last ``*/`` of ``buf[start:end]`` starts (``start - 1`` if none)."""
     for p in range(end - 2, start - 1, -1):
@@ -226,7 +226,7 @@ def _last_close(buf, start, end):
     return start - 1
 
 
-@njit_leaf(no_cpython_wrapper=True)
+@njit_leaf
 def _is_decimal(buf, s, e):
     p = s
     while p < e and ZERO <= buf[p] <= NINE:
@@ -234,7 +234,7 @@ def _is_decimal(buf, s, e):
     return e > s and p == e
 
 
-@njit_leaf(no_cpython_wrapper=True)
+@njit_leaf
 def _parse_int(buf, s, e):
     """``(ok, value)`` of an integer token: a sign, then 1 to 18 ASCII digits."""
     p = s
@@ -325,7 +325,7 @@ def _parse_float(buf, s, e):
     return ENTRY_OK, sign * (float(mantissa) / _POWERS[-exponent])
 
 
-@njit_leaf(no_cpython_wrapper=True)
+@njit_leaf
 def _is_number(buf, s, e):
     """What the periods rows must be: ``[-+]?(\\d+\\.?\\d*|\\.\\d+)([eE][-+]?\\d+)?``."""
     p = s
@@ -354,7 +354,7 @@ def _is_number(buf, s, e):
     return p == e
 
 
-@njit_leaf(no_cpython_wrapper=True)
+@njit_leaf
 def _leading_ids(buf, tok_s, tok_e, ntok, ids, m):
     """The signed ids at the start of tokens 1.. of an entry into ``ids`` from ``m``: ``(ok,
     m after them)``. What follows them must be an attribute's name; a token that is neither
@@ -378,7 +378,7 @@ def _leading_ids(buf, tok_s, tok_e, ntok, ids, m):
     return True, m
 
 
-@njit_leaf(no_cpython_wrapper=True)
+@njit_leaf
 def _count_breaks(buf, start, end):
     n = 0
     for p in range(start, end):
@@ -616,7 +616,7 @@ def _tokenize(buf, file_starts, marker, marker_ends):
     )
 
 
-@njit_leaf(no_cpython_wrapper=True)
+@njit_leaf
 def _slow_number(slow, n_slow, entry, slot, s, e):
     """Note a number left to Python's float(): token ``buf[s:e]``, for ``slot`` of ``entry``."""
     slow_entry, slow_slot, slow_s, slow_e = slow
@@ -624,7 +624,7 @@ def _slow_number(slow, n_slow, entry, slot, s, e):
     return n_slow + 1
 
 
-@njit_leaf(no_cpython_wrapper=True)
+@njit_leaf
 def _vertex_entry(buf, tok_s, tok_e, ntok, n, status, xyz, slow, n_slow):
     """A vertex line's coordinates (tokens 1 to 3) into ``xyz[n]``; returns ``n_slow``."""
     if ntok < 4:
@@ -641,7 +641,7 @@ def _vertex_entry(buf, tok_s, tok_e, ntok, n, status, xyz, slow, n_slow):
     return n_slow
 
 
-@njit_leaf(no_cpython_wrapper=True)
+@njit_leaf
 def _edge_entry(
     buf, tok_s, tok_e, ntok, n, periodic, marker, marker_ends, status, first, last, wraps, flag
 ):
@@ -668,7 +668,7 @@ def _edge_entry(
                 break
 
 
-@njit_leaf(no_cpython_wrapper=True)
+@njit_leaf
 def _list_entry(
     buf, tok_s, tok_e, ntok, n, section, ids, m, status, first, last, xyz, flag, slow, n_slow
 ):
@@ -701,7 +701,7 @@ def _list_entry(
     return m, n_slow
 
 
-@njit_leaf(no_cpython_wrapper=True)
+@njit_leaf
 def _header_status(
     string_line, space_dim, space_line, surface_dim, surface_line, simplex_line, symmetry_line
 ):
@@ -722,7 +722,7 @@ def _header_status(
     return FILE_OK, 0, 0
 
 
-@njit_leaf(no_cpython_wrapper=True)
+@njit_leaf
 def _wrap_mark(buf, s, e):
     """A wrap mark's value: ``*`` 0, ``+`` 1, ``-`` -1; 2 for any other token."""
     if e - s != 1:
@@ -737,7 +737,7 @@ def _wrap_mark(buf, s, e):
     return 2
 
 
-@njit_leaf(no_cpython_wrapper=True)
+@njit_leaf
 def _words_at(buf, tok_s, tok_e, t, marker, marker_ends):
     """Whether tokens ``t, t + 1, ...`` are the marker's words, in any case."""
     begin = 0
@@ -755,7 +755,7 @@ def _words_at(buf, tok_s, tok_e, t, marker, marker_ends):
 # --- Ids to slots ---------------------------------------------------------------------------
 
 
-@njit_leaf(no_cpython_wrapper=True)
+@njit_leaf
 def _hash(x, mask):
     h = np.uint64(x) * np.uint64(0x9E3779B97F4A7C15)
     return np.int64((h ^ (h >> np.uint64(31))) & np.uint64(mask))
@@ -773,7 +773,7 @@ def _new_map(n, most):
     return np.empty(size, np.int64), np.full(size, -1, np.int64), np.zeros(1, np.int64), direct
 
 
-@njit_leaf(no_cpython_wrapper=True)
+@njit_leaf
 def _slot(table, x, insert):
     """The slot of id ``x`` (slots count up from 0 in the order ids first come), or -1 if it
     has none and ``insert`` is False."""
@@ -1023,12 +1023,12 @@ def _file_tables(f0, f1, kind, ident, line_of, status, first, last, wraps, flag,
 # --- One body -------------------------------------------------------------------------------
 
 
-@njit_leaf(no_cpython_wrapper=True)
+@njit_leaf
 def _dot3(a, b):
     return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 
 
-@njit_leaf(no_cpython_wrapper=True)
+@njit_leaf
 def _shifted(xyz, entry, off, periods, out):
     """A vertex's position translated by ``off`` (whole periods) into ``out``."""
     for k in range(3):
@@ -1516,7 +1516,7 @@ def _body(
     return GRAIN_OK
 
 
-@njit_leaf(no_cpython_wrapper=True)
+@njit_leaf
 def _root(parent, k):
     while parent[k] != k:
         parent[k] = parent[parent[k]]
@@ -1524,7 +1524,7 @@ def _root(parent, k):
     return k
 
 
-@njit_leaf(no_cpython_wrapper=True)
+@njit_leaf
 def _undefined_vertex(key, vertices, edges, d_edge, params):
     """GRAIN_UNDEFINED for a vertex without coordinates, named with the first edge the body
     uses that ends at it."""
