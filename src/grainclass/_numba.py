@@ -1,11 +1,13 @@
-"""The one place where numba's compilation flags are set; :func:`at`, the kernels' index; and
-:func:`borrowed`, the view a per-grain kernel is handed.
+"""The one place where numba's compilation flags are set; :func:`at`, the kernels' index;
+:func:`borrowed`, the view a per-grain kernel is handed; and the listener that tells
+:mod:`grainclass.warmup` when numba compiles one of the kernels.
 
 The kernels do exact combinatorics, so ``fastmath`` stays off; ``cache=True`` keeps shell
 pipelines from recompiling on every run; ``nogil=True`` lets :mod:`grainclass.parallel` run a
 batch kernel on several grain ranges in threads at once (numba's own ``parallel=True`` would
 cost many seconds more compilation at a first run). Only numba's documented options and
-extension API are used (``inline``, ``numba.extending.intrinsic``, ``numba.carray``).
+extension API are used (``inline``, ``numba.extending.intrinsic``, ``numba.carray``, the
+event API of ``numba.core.event``).
 """
 
 import functools
@@ -14,7 +16,10 @@ import numba
 import numpy as np
 from numba import types
 from numba.core import cgutils
+from numba.core import event as numba_event
 from numba.extending import intrinsic, overload
+
+from grainclass import warmup
 
 JIT = {"cache": True, "nogil": True, "fastmath": False}
 
@@ -70,3 +75,18 @@ def _first_element(typingctx, array):
 @overload(borrowed, inline="always", jit_options=JIT)
 def _borrowed_jit(array):
     return lambda array: numba.carray(_first_element(array), array.shape)
+
+
+class _KernelCompiles(numba_event.Listener):
+    """numba's ``numba:compile`` events (a kernel compiled, not loaded from the cache) for
+    grainclass's kernels, passed on to :func:`grainclass.warmup.kernel_compiling`."""
+
+    def on_start(self, event: numba_event.Event) -> None:
+        if event.data["dispatcher"].py_func.__module__.startswith("grainclass."):
+            warmup.kernel_compiling()
+
+    def on_end(self, event: numba_event.Event) -> None:
+        pass
+
+
+numba_event.register("numba:compile", _KernelCompiles())

@@ -16,8 +16,8 @@ from contextlib import suppress
 
 import click
 
-from grainclass import __version__
-from grainclass.cli import signals
+from grainclass import __version__, warmup
+from grainclass.cli import signals, startup
 from grainclass.cli.census import census_cmd
 from grainclass.cli.classify import classify_cmd
 from grainclass.cli.exit_codes import GRAINS, ExitCode
@@ -74,6 +74,7 @@ def main() -> None:
     # as plantri in the same pipe; grainclass multiplies no matrices.
     os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
     warnings.showwarning = _show_warning
+    warmup.on_first_compile(startup.announce_compilation)
     signals.catch_stops()
     stopped = False
     try:

@@ -8,6 +8,7 @@ from typing import TypeVar
 import click
 
 from grainclass import DEFAULT_CHUNK_SIZE
+from grainclass.cli import startup
 from grainclass.vocabulary import INPUT_FORMATS, OUTPUT_FORMATS
 
 F = TypeVar("F", bound=Callable)
@@ -89,7 +90,7 @@ jobs = click.option(
 def quiet(
     help: str = "No progress on stderr, and classify's counts only if a grain is not ok.",
 ) -> Callable[[F], F]:
-    return click.option("-q", "--quiet", is_flag=True, help=help)
+    return click.option("-q", "--quiet", is_flag=True, help=help, callback=startup.note_quiet)
 
 
 def types(default: bool) -> Callable[[F], F]:

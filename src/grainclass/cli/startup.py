@@ -1,5 +1,6 @@
-"""What a command does while the libraries load: standard input read ahead, and the cyclic
-garbage collector kept off until the first batch is through (see :func:`grainclass.cli.main`)."""
+"""What a command does while the libraries load: standard input read ahead, the cyclic garbage
+collector kept off until the first batch is through (see :func:`grainclass.cli.main`), and a
+line on standard error when kernels compile."""
 
 from __future__ import annotations
 
@@ -9,6 +10,29 @@ from collections.abc import Iterable, Iterator, Sequence
 from typing import TypeVar
 
 T = TypeVar("T")
+
+COMPILING = "grainclass: compiling kernels, once per installation (this can take a minute)"
+_quiet = False  # -q was given: set while click parses, read from a compiling thread
+
+
+def note_quiet(ctx: object, param: object, quiet: bool) -> bool:
+    """The callback of -q/--quiet: remembers it for :func:`announce_compilation`, which runs in
+    whichever thread compiles, outside click's context."""
+    global _quiet
+    _quiet = quiet
+    return quiet
+
+
+def announce_compilation() -> None:
+    """Say on standard error that kernels compile (:func:`grainclass.warmup.on_first_compile`):
+    the first run after installation waits 10-30 s for numba, which a person at a terminal is
+    told even with -q (a line, once, as progress would be drawn); a log or a pipe is told
+    unless -q is given."""
+    terminal = sys.stderr.isatty()
+    if terminal or not _quiet:
+        # On a terminal a progress line may be drawn: the notice replaces it.
+        sys.stderr.write(("\r\033[K" if terminal else "") + COMPILING + "\n")
+        sys.stderr.flush()
 
 
 def after_start_up(items: Iterable[T]) -> Iterator[T]:
