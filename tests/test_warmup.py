@@ -304,6 +304,31 @@ def test_the_first_compiled_kernel_is_heard_once_and_a_cached_one_not_at_all(tmp
     assert [run.stdout.split() for run in runs] == [[b"1"], [b"0"]]
 
 
+USER_KERNELS = """
+import numba
+from grainclass import _numba, warmup
+heard = []
+warmup.on_first_compile(lambda: heard.append(True))
+made = {}
+exec("def plus_one(x):\\n    return x + 1", made)
+made["plus_one"].__module__ = None  # as a function made by exec may have it
+assert numba.njit(made["plus_one"])(1) == 2
+assert numba.njit(lambda x: 2 * x)(2) == 4
+print(len(heard))
+"""
+
+
+@needs_jit
+def test_other_code_compiling_in_the_process_is_not_heard_and_not_disturbed(tmp_path):
+    """The listener is numba's, for the whole process: a library user's own kernels, one of
+    them without a module, compile as ever and are no kernels of grainclass's."""
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path / "cache"))
+    done = subprocess.run(
+        [sys.executable, "-c", USER_KERNELS], env=env, check=True, capture_output=True
+    )
+    assert done.stdout.split() == [b"0"]
+
+
 @needs_jit
 def test_a_command_says_once_that_kernels_compile_and_not_when_they_are_cached(tmp_path):
     """The first run with an empty cache compiles (stderr is a pipe here, and -q is not

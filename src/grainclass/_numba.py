@@ -82,7 +82,10 @@ class _KernelCompiles(numba_event.Listener):
     grainclass's kernels, passed on to :func:`grainclass.warmup.kernel_compiling`."""
 
     def on_start(self, event: numba_event.Event) -> None:
-        if event.data["dispatcher"].py_func.__module__.startswith("grainclass."):
+        # Any other code compiling in the process (a user's own kernels, numba's) is not
+        # ours, and a function made without a module must not break its compilation.
+        module = getattr(event.data["dispatcher"].py_func, "__module__", None) or ""
+        if module.startswith("grainclass."):
             warmup.kernel_compiling()
 
     def on_end(self, event: numba_event.Event) -> None:
