@@ -41,10 +41,20 @@ $(KERNELS_STAMP): $(KERNELS)
 
 install: $(STAMP) $(KERNELS_STAMP)
 
+# The bundled examples classified and their tables printed; then the tour's other commands run
+# on them, their output thrown away, so that numba compiles their kernels now (once per
+# installation, into its cache beside the package) and each starts at once when run by hand.
 demo: voro install
 	@mkdir -p build
 	$(BIN)/grainclass classify examples/polytopes.txt examples/plantri-10.pc -o build/demo.parquet
 	$(BIN)/grainclass summarize build/demo.parquet --n 10
+	@echo "Compiling the kernels of the other commands, once per installation:"
+	$(BIN)/grainclass classify examples/bad-grains.txt -o build/demo-bad.parquet -q
+	$(BIN)/grainclass summarize examples/plantri-10.pc examples/polytopes.txt -q > /dev/null
+	$(BIN)/grainclass summarize examples/polytopes.txt --types -q > /dev/null
+	$(BIN)/grainclass perturb examples/polytopes.txt --flips 1 --seed 1 -q > /dev/null
+	$(BIN)/grainclass voronoi 200 --seed 1 -o build/demo-voronoi.parquet -q
+	$(BIN)/grainclass voronoi 200 --seed 1 -o build/demo-voronoi.txt -q
 
 # Every kind of `grainclass plot` for a fresh Poisson-Voronoi data set (edge-errors: perturbed
 # with seed 1), and the evolution kind for the bundled grain-growth grains, into build/figures/

@@ -1,5 +1,6 @@
 """The helper that fills a cold kernel cache from the other end must compile exactly what
-``classify`` then asks for: a signature that differed would be compiled twice."""
+``classify`` then asks for: a signature that differed would be compiled twice. It starts when a
+kernel compiles, as the command line's notice is printed then, and only then."""
 
 from __future__ import annotations
 
@@ -11,7 +12,8 @@ import sys
 
 import pytest
 
-from grainclass.warmup import cold
+from conftest import EXAMPLES
+from grainclass import compilation
 
 needs_jit = pytest.mark.skipif(
     os.environ.get("NUMBA_DISABLE_JIT") == "1", reason="nothing is compiled without the JIT"
@@ -155,7 +157,7 @@ def test_counting_plans_compile_what_summarize_calls(tmp_path):
 # on its own at a first run).
 SIGNATURES = """
 import importlib, json, pkgutil, sys
-import numba
+from numba.extending import is_jitted
 import grainclass._kernels as kernels
 from grainclass.classification import classify
 from grainclass.options import ReadOptions
@@ -171,7 +173,7 @@ several = {}
 for module in pkgutil.iter_modules(kernels.__path__):
     found = importlib.import_module(f"grainclass._kernels.{module.name}")
     for name, value in vars(found).items():
-        if isinstance(value, numba.core.registry.CPUDispatcher) and len(value.signatures) > 1:
+        if is_jitted(value) and len(value.signatures) > 1:
             several[name] = [str(s) for s in value.signatures]
 print(json.dumps(several))
 """
@@ -240,36 +242,139 @@ def test_the_first_batch_tells_the_helper_the_plan(monkeypatch, grains, told):
         def wait(self, timeout=None) -> int:
             return 0
 
-    monkeypatch.setattr(warmup, "cold", lambda kernel: True)
     monkeypatch.setattr(warmup.subprocess, "Popen", Helper)
     monkeypatch.setattr(warmup, "_validation_first", lambda: validated_first.append(True))
     lists = {"cube": warmup.CUBE, "prism": warmup.PRISM, "two-gon": TWO_GON, "extra": EXTRA}
     batches = [GrainBatch.from_lists([lists[name]]) for name in grains]
     with warmup.compiling_from_both_ends(jobs=2, types=True) as watch:
+        compilation.kernel_compiling()  # a cold cache: the reader's kernel, say
         assert list(watch(batches)) == batches
     assert heard == [told]
     assert validated_first == ([True] if told == warmup.VALIDATION else [])
 
 
-@needs_jit
-def test_a_kernel_never_compiled_is_cold_and_a_cached_one_is_not(tmp_path):
-    probe = (
-        "import sys; from grainclass.warmup import cold; "
-        "from grainclass._kernels.groups import _group_keys; import numpy as np; "
-        "print(cold(_group_keys)); _group_keys(np.zeros(3, np.int64)); print(cold(_group_keys))"
-    )
-    env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path / "cache"))
-    out = subprocess.run([sys.executable, "-c", probe], env=env, check=True, capture_output=True)
-    assert out.stdout.split() == [b"True", b"False"]
-    assert cold(object()) is False  # not a numba kernel: nothing to warm
-
-
-def test_helper_runs_only_on_a_cold_cache_with_jobs_and_stops_when_the_run_fails(monkeypatch):
+@pytest.mark.parametrize("compiled_before_the_first_batch", [True, False])
+def test_the_plan_reaches_the_helper_once_whenever_it_starts(
+    monkeypatch, compiled_before_the_first_batch
+):
+    """The first kernel compiled may come before the first batch (a reader's) or after it (the
+    classification's): the helper hears the plan either way, once."""
     import grainclass.warmup as warmup
     from grainclass.batch import GrainBatch
-    from grainclass.classification import classify
 
-    classify(GrainBatch.from_lists([warmup.CUBE]))  # the cache is warm from here on
+    heard: list[bytes] = []
+
+    class Pipe(io.BytesIO):
+        def close(self) -> None:
+            if not self.closed:
+                heard.append(self.getvalue())
+            super().close()
+
+    class Helper:
+        def __init__(self, *args, **kwargs) -> None:
+            self.stdin = Pipe()
+
+        def wait(self, timeout=None) -> int:
+            return 0
+
+    monkeypatch.setattr(warmup.subprocess, "Popen", Helper)
+    with warmup.compiling_from_both_ends(jobs=2, types=True) as watch:
+        if compiled_before_the_first_batch:
+            compilation.kernel_compiling()
+        list(watch([GrainBatch.from_lists([warmup.PRISM])]))
+        compilation.kernel_compiling()
+        compilation.kernel_compiling()
+    assert heard == [warmup.GENERAL]
+
+
+@needs_jit
+def test_the_first_compiled_kernel_is_heard_once_and_a_cached_one_not_at_all(tmp_path):
+    """numba's compile event: a process with an empty cache hears its first kernel compile
+    once (the callback is not called again for the kernels that follow); the next process
+    loads them from the cache and hears nothing."""
+    probe = (
+        "from grainclass import compilation; heard = []; "
+        "compilation.on_first_compile(lambda: heard.append(True)); "
+        "from grainclass._kernels.groups import _group_keys; import numpy as np; "
+        "_group_keys(np.zeros(3, np.int64)); _group_keys(np.zeros(3, np.int8)); print(len(heard))"
+    )
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path / "cache"))
+    runs = [
+        subprocess.run([sys.executable, "-c", probe], env=env, check=True, capture_output=True)
+        for _ in range(2)
+    ]
+    assert [run.stdout.split() for run in runs] == [[b"1"], [b"0"]]
+
+
+USER_KERNELS = """
+import numba
+from grainclass import _numba, compilation
+heard = []
+compilation.on_first_compile(lambda: heard.append(True))
+made = {}
+exec("def plus_one(x):\\n    return x + 1", made)
+made["plus_one"].__module__ = None  # as a function made by exec may have it
+assert numba.njit(made["plus_one"])(1) == 2
+assert numba.njit(lambda x: 2 * x)(2) == 4
+print(len(heard))
+"""
+
+
+@needs_jit
+def test_other_code_compiling_in_the_process_is_not_heard_and_not_disturbed(tmp_path):
+    """The listener is numba's, for the whole process: a library user's own kernels, one of
+    them without a module, compile as ever and are no kernels of grainclass's."""
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path / "cache"))
+    done = subprocess.run(
+        [sys.executable, "-c", USER_KERNELS], env=env, check=True, capture_output=True
+    )
+    assert done.stdout.split() == [b"0"]
+
+
+@needs_jit
+def test_a_command_says_once_that_kernels_compile_and_not_when_they_are_cached(tmp_path):
+    """The first run with an empty cache compiles (stderr is a pipe here, and -q is not
+    given): one line says so. The second loads every kernel from the cache and says nothing."""
+    from grainclass.cli.startup import COMPILING
+
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path / "cache"))
+    command = [sys.executable, "-m", "grainclass", "summarize", str(EXAMPLES / "plantri-10.pc")]
+    first, second = (
+        subprocess.run(command, env=env, check=True, capture_output=True, text=True)
+        for _ in range(2)
+    )
+    assert first.stderr.splitlines().count(COMPILING) == 1, first.stderr
+    assert COMPILING not in second.stderr, second.stderr
+    assert first.stdout == second.stdout
+
+
+@pytest.mark.parametrize(
+    ("terminal", "quiet", "said"),
+    [(True, False, True), (True, True, True), (False, False, True), (False, True, False)],
+)
+def test_the_compiling_notice_is_said_on_a_terminal_and_elsewhere_unless_quiet(
+    monkeypatch, terminal, quiet, said
+):
+    """A person at a terminal is told even with -q; a log or a pipe only without -q."""
+    from grainclass.cli import startup
+
+    class Stderr(io.StringIO):
+        def isatty(self) -> bool:
+            return terminal
+
+    stderr = Stderr()
+    monkeypatch.setattr(sys, "stderr", stderr)
+    monkeypatch.setattr(startup, "_quiet", False)
+    startup.note_quiet(None, None, quiet)
+    startup.announce_compilation()
+    assert (startup.COMPILING + "\n" in stderr.getvalue()) == said
+
+
+def test_helper_runs_only_once_a_kernel_compiles_with_jobs_and_stops_when_the_run_fails(
+    monkeypatch,
+):
+    import grainclass.warmup as warmup
+
     started: list[subprocess.Popen] = []
     popen = subprocess.Popen
 
@@ -280,15 +385,23 @@ def test_helper_runs_only_on_a_cold_cache_with_jobs_and_stops_when_the_run_fails
     monkeypatch.setattr(warmup.subprocess, "Popen", recording_popen)
     with warmup.compiling_from_both_ends(jobs=2, types=True):
         pass
-    assert started == []  # a warm cache
-    monkeypatch.setattr(warmup, "cold", lambda kernel: True)
+    assert started == []  # nothing compiled: a warm cache
     with warmup.compiling_from_both_ends(jobs=1, types=True):
-        pass
+        compilation.kernel_compiling()
     assert started == []  # one job: no second process
-    with pytest.raises(KeyError), warmup.compiling_from_both_ends(jobs=2, types=True):
-        raise KeyError("bad input")
-    assert len(started) == 1
+
+    def failing_run() -> None:
+        with warmup.compiling_from_both_ends(jobs=2, types=True):
+            compilation.kernel_compiling()
+            compilation.kernel_compiling()
+            raise KeyError("bad input")
+
+    with pytest.raises(KeyError):
+        failing_run()
+    assert len(started) == 1  # one helper, however many kernels compile
     assert started[0].returncode == -9  # killed at once, and reaped
+    compilation.kernel_compiling()  # after the run: no helper
+    assert len(started) == 1
 
 
 def test_a_helper_that_cannot_start_leaves_the_run_to_itself(monkeypatch):
@@ -299,9 +412,9 @@ def test_a_helper_that_cannot_start_leaves_the_run_to_itself(monkeypatch):
     def no_process(*args, **kwargs):
         raise PermissionError(13, "Permission denied")
 
-    monkeypatch.setattr(warmup, "cold", lambda kernel: True)
     monkeypatch.setattr(warmup.subprocess, "Popen", no_process)
     ran = []
     with warmup.compiling_from_both_ends(jobs=2, types=True):
+        compilation.kernel_compiling()
         ran.append(True)
     assert ran == [True]

@@ -1,12 +1,15 @@
-"""A cold kernel cache is filled from both ends at once.
+"""A cold kernel cache is filled from both ends at once, and the command line is told when
+kernels compile.
 
 numba compiles one kernel at a time in a process, so the first ``classify`` or ``summarize``
 after installation (or after an upgrade of numba) spends most of its time compiling, on one
-core. When the cache
-is cold and more than one job may run, a helper process compiles the kernels in the opposite
-order (the Weinberg walk first, the classification last) while the main process starts with the
-classification: each loads from numba's cache what the other has already written there, and the
-two meet in the middle.
+core. numba broadcasts an event when it compiles a kernel, never when it loads one from its
+cache (its documented event API, ``numba:compile``), which :mod:`grainclass.compilation` passes
+on to its listeners. A command's first such event is the sign
+of a cold cache. When more than one job may run, a helper process then compiles the kernels
+in the opposite order (the Weinberg walk first, the classification last) while the main
+process goes on with the classification: each loads from numba's cache what the other has
+already written there, and the two meet in the middle.
 
 A grain that the fast path leaves needs the general validation, and one of more than 64 faces
 the general classification too: each takes longer to compile than the fast path. The run
@@ -23,9 +26,12 @@ from __future__ import annotations
 import contextlib
 import subprocess
 import sys
+import threading
 from collections.abc import Callable, Iterable, Iterator
 from contextlib import contextmanager
 from typing import TYPE_CHECKING
+
+from grainclass import compilation
 
 if TYPE_CHECKING:
     from grainclass.batch import GrainBatch
@@ -40,83 +46,112 @@ VALIDATION = b"validation\n"  # grains the fast path leaves: the run compiles th
 _STOP_WAIT = 2.0  # seconds the helper may take to finish once the main process is done
 
 
-def cold(kernel: object) -> bool:
-    """True if numba's cache holds nothing usable for ``kernel`` (no index, or one written
-    for another version of its source)."""
-    try:
-        return not kernel._cache._cache_file._load_index()  # type: ignore[attr-defined]
-    except Exception:  # no JIT (NUMBA_DISABLE_JIT), or numba's cache internals moved
-        return False
+class _Helper:
+    """The helper process, started at the first kernel compiled while it is wanted, and the
+    plan it is told (written as soon as both the process and the plan are there)."""
+
+    def __init__(self, types: bool, counting: bool) -> None:
+        self.command = [
+            sys.executable,
+            "-m",
+            "grainclass.warmup",
+            *([] if types else ["--no-types"]),
+            *(["--counting"] if counting else []),
+        ]
+        self.process: subprocess.Popen | None = None
+        self.plan: bytes | None = None
+        self.done = False  # the run is over: no process is started any more
+        self.lock = threading.Lock()
+
+    def start(self) -> None:
+        with self.lock:
+            if self.process is not None or self.done:
+                return
+            # No process to spare, or an interpreter this user may not run: the helper only
+            # saves time, and the run compiles everything itself.
+            with contextlib.suppress(OSError):
+                self.process = subprocess.Popen(
+                    self.command,
+                    stdin=subprocess.PIPE,
+                    stdout=subprocess.DEVNULL,
+                    stderr=subprocess.DEVNULL,
+                )
+            if self.plan is not None:
+                self._write()
+
+    @property
+    def running(self) -> bool:
+        return self.process is not None
+
+    def tell(self, plan: bytes) -> None:
+        with self.lock:
+            if self.plan is None:
+                self.plan = plan
+                if self.process is not None:
+                    self._write()
+
+    def _write(self) -> None:
+        # The helper may be gone already (killed, or failed): it only ever saves time.
+        stdin = self.process.stdin  # type: ignore[union-attr]
+        with contextlib.suppress(OSError, ValueError):
+            stdin.write(self.plan)
+        with contextlib.suppress(OSError, ValueError):
+            stdin.close()
+
+    def stop(self, kill: bool) -> None:
+        """Once the run is done the helper has little left (what it would compile next is in
+        the cache) and gets a moment to finish; if the run failed it is stopped at once."""
+        with self.lock:
+            self.done = True
+        process = self.process
+        if process is None:
+            return
+        if kill:
+            process.kill()
+        self.tell(b"")  # no batch came
+        try:
+            process.wait(timeout=None if kill else _STOP_WAIT)
+        except subprocess.TimeoutExpired:
+            process.kill()
+            process.wait()
 
 
 @contextmanager
 def compiling_from_both_ends(
     jobs: int, types: bool, counting: bool = False
 ) -> Iterator[Callable[[Iterable[GrainBatch]], Iterator[GrainBatch]]]:
-    """Run the body with a helper compiling from the other end when the cache is cold and
-    ``jobs`` > 1. Once the body is done the helper has little left (what it would compile next
-    is in the cache) and gets a moment to finish; if the body fails it is stopped at once.
-    ``counting`` (``summarize`` without types): the run counts grains and writes no table, and
-    the helper has work only when the plan needs more than the fast path.
+    """Run the body with a helper compiling from the other end once a kernel compiles in the
+    body (a cold cache) and ``jobs`` > 1. ``counting`` (``summarize`` without types): the run
+    counts grains and writes no table, and the helper has work only when the plan needs more
+    than the fast path.
 
     Yields ``watch``, which passes the run's batches through and, at the first, tells the helper
     the plan (which it reads once it has compiled the Weinberg walk, waiting for it if need be)
-    and compiles the general validation first if the plan says so.
+    and, if the helper runs, compiles the general validation first if the plan says so.
     """
-    from grainclass._kernels.batch import _classify_batch
-    from grainclass._kernels.weinberg import _weinberg_batch
-
-    helper = None
-    if jobs > 1 and cold(_weinberg_batch if types else _classify_batch):
-        # No process to spare, or an interpreter this user may not run: the helper only saves
-        # time, and the run compiles everything itself.
-        with contextlib.suppress(OSError):
-            helper = subprocess.Popen(
-                [
-                    sys.executable,
-                    "-m",
-                    "grainclass.warmup",
-                    *([] if types else ["--no-types"]),
-                    *(["--counting"] if counting else []),
-                ],
-                stdin=subprocess.PIPE,
-                stdout=subprocess.DEVNULL,
-                stderr=subprocess.DEVNULL,
-            )
-
-    def tell(plan: bytes) -> None:
-        # The helper may be gone already (killed, or failed): it only ever saves time.
-        with contextlib.suppress(OSError, ValueError):
-            helper.stdin.write(plan)  # type: ignore[union-attr]
-        with contextlib.suppress(OSError, ValueError):
-            helper.stdin.close()  # type: ignore[union-attr]
+    helper = _Helper(types, counting) if jobs > 1 else None
+    if helper is not None:
+        compilation.listen(helper.start)
 
     def watch(batches: Iterable[GrainBatch]) -> Iterator[GrainBatch]:
         told = False
         for batch in batches:
             if not told and helper is not None:
                 plan = _plan(batch)
-                tell(plan)
+                helper.tell(plan)
                 told = True
-                if plan == VALIDATION:
+                if plan == VALIDATION and helper.running:
                     _validation_first()
             yield batch
 
+    failed = True
     try:
         yield watch
-    except BaseException:
+        failed = False
+    finally:
         if helper is not None:
-            helper.kill()
-            tell(b"")
-            helper.wait()
-        raise
-    if helper is not None:
-        tell(b"")  # no batch came
-        try:
-            helper.wait(timeout=_STOP_WAIT)
-        except subprocess.TimeoutExpired:
-            helper.kill()
-            helper.wait()
+            compilation.stop_listening(helper.start)
+            helper.stop(kill=failed)
 
 
 def _plan(batch: GrainBatch) -> bytes:

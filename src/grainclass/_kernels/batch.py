@@ -39,6 +39,7 @@ from grainclass._kernels.small import (
     next_stamp,
 )
 from grainclass._kernels.trees import (
+    _borrowed_forest,
     _by_round,
     _forest_bytes,
     _forest_scratch,
@@ -47,7 +48,7 @@ from grainclass._kernels.trees import (
     _parents_from_links,
 )
 from grainclass._kernels.validate import _rotation, _validate, grain_lists
-from grainclass._numba import njit, njit_leaf
+from grainclass._numba import borrowed, njit, njit_leaf
 
 
 @njit
@@ -211,27 +212,29 @@ def _classify_batch(
         f0 = face_offsets[g]
         n = face_offsets[g + 1] - f0
         stamp = next_stamp(following, stamp)
-        fast, triangular = (
-            _validate_small(n, nbr_offsets, neighbors, f0, adj, following, stamp)
-            if n <= max_small
-            else (False, ZERO)
-        )
+        fast, triangular = False, ZERO
+        if n <= max_small:
+            fast, triangular = _validate_small(
+                n, borrowed(nbr_offsets), borrowed(neighbors), f0, borrowed(adj),
+                borrowed(following), stamp,
+            )  # fmt: skip
         if fast:
             status[g] = OK
             consistent[g] = True
-            # _classify_ok_small written out: inlined, the arrays handed to it are counted up
-            # and down at every grain, and a call of its own, as fast, compiles longer at a
-            # first run (see docs/performance.md).
+            # _classify_ok_small written out, its arrays borrowed: otherwise each is counted
+            # up and down at every grain (see docs/performance.md).
             alive = _classify_small(
-                g, n, triangular, adj, link, removed_round, family, fundamental, belts
-            )
+                g, n, triangular, borrowed(adj), borrowed(link), borrowed(removed_round),
+                family, fundamental, belts,
+            )  # fmt: skip
             if 4 < fundamental[g] < n:
                 if strings:
                     trees_count[g], depth[g], tree_length[g] = _forest_string_small(
-                        n, alive, removed_round, link, tree_bytes, tree_offsets[g], forest
-                    )
+                        n, alive, borrowed(removed_round), borrowed(link), borrowed(tree_bytes),
+                        tree_offsets[g], _borrowed_forest(forest),
+                    )  # fmt: skip
                 else:
-                    trees_count[g] = _roots_small(alive, n, link)
+                    trees_count[g] = _roots_small(alive, n, borrowed(link))
         else:
             status[g] = PENDING
 
@@ -434,16 +437,19 @@ def _tally_records(buf, starts):
         p, end = starts[r], starts[r + 1]
         n = _small_record(buf, p, end)
         fast, triangular = (
-            _validate_record(buf, p + 1, end, n, adj, following, stamp) if n else (False, ZERO)
+            _validate_record(buf, p + 1, end, n, borrowed(adj), borrowed(following), stamp)
+            if n
+            else (False, ZERO)
         )
         if not fast:
             pending[n_pending] = r
             n_pending += 1
             continue
         alive = _classify_small(
-            0, n, triangular, adj, link, removed_round, family, fundamental, belts
-        )
-        trees = _roots_small(alive, n, link) if 4 < fundamental[0] < n else 0
+            0, n, triangular, borrowed(adj), borrowed(link), borrowed(removed_round), family,
+            fundamental, belts,
+        )  # fmt: skip
+        trees = _roots_small(alive, n, borrowed(link)) if 4 < fundamental[0] < n else 0
         key = census_key(n, family[0], n - fundamental[0], trees, belts[0, 0])
         table, sums, groups, s = insert(table, sums, groups, key)
         sums[s, 0] += 1

@@ -6,11 +6,10 @@
 
 import numpy as np
 from llvmlite import ir
-from numba.core import cgutils, types
-from numba.cpython.unsafe.numbers import trailing_zeros
+from numba import types
 from numba.extending import intrinsic, overload
 
-from grainclass._numba import njit
+from grainclass._numba import JIT, njit
 
 MAX_BITSET_FACES = 64
 ONE = np.uint64(1)
@@ -28,27 +27,39 @@ def lowest(x):
     return (x & -x).bit_length() - 1
 
 
+# llvmlite's IRBuilder emits LLVM's ctpop and cttz intrinsics, as numba's extension docs build
+# an intrinsic's code.
 @intrinsic
 def _ctpop(typingctx, x):
     if not isinstance(x, types.Integer):
         return None
 
     def codegen(context, builder, signature, args):
-        fnty = ir.FunctionType(args[0].type, [args[0].type])
-        fn = cgutils.get_or_insert_function(builder.module, fnty, f"llvm.ctpop.i{x.bitwidth}")
-        return builder.call(fn, [args[0]])
+        return builder.ctpop(args[0])
 
     return x(x), codegen
 
 
-@overload(popcount, jit_options={"cache": True})
+@intrinsic
+def _cttz(typingctx, x):
+    if not isinstance(x, types.Integer):
+        return None
+
+    def codegen(context, builder, signature, args):
+        # Not "undefined at zero": the callers never pass 0, but LLVM's result stays defined.
+        return builder.cttz(args[0], ir.Constant(ir.IntType(1), 0))
+
+    return x(x), codegen
+
+
+@overload(popcount, jit_options=JIT)
 def _popcount_jit(x):
     return lambda x: _ctpop(x)
 
 
-@overload(lowest, jit_options={"cache": True})
+@overload(lowest, jit_options=JIT)
 def _lowest_jit(x):
-    return lambda x: trailing_zeros(x)
+    return lambda x: _cttz(x)
 
 
 @njit(inline="always")  # called with int32, int64 and uint64: inlined, compiled for none

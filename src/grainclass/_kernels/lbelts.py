@@ -20,7 +20,7 @@ from grainclass._kernels.belts import _side_weights, side_vertices
 from grainclass._kernels.bits import ONE, ZERO, bit, full, lowest, popcount
 from grainclass._kernels.small import _component
 from grainclass._kernels.validate import _reverse_darts, _rotation, grain_lists
-from grainclass._numba import njit, njit_leaf
+from grainclass._numba import borrowed, njit, njit_leaf
 
 MAX_BELT_LENGTH = 10
 
@@ -188,7 +188,10 @@ def _belts_batch(first, last, grains, face_offsets, nbr_offsets, neighbors, long
                 for k in range(off[v], off[v + 1]):
                     row |= bit(nb[k])
                 adj[v] = row
-            _belt_profile_small(n, adj, longest, out[g], cand, forb, path, cyc)
+            _belt_profile_small(
+                n, borrowed(adj), longest, borrowed(out[g]), borrowed(cand), borrowed(forb),
+                borrowed(path), borrowed(cyc),
+            )  # fmt: skip
         else:
             rot = np.empty(off[n], np.int64)
             _rotation(n, off, nb, rot)

@@ -8,7 +8,7 @@ indexed by pairs of corners are allocated once per call and cleared after each g
 
 import numpy as np
 
-from grainclass._numba import njit, njit_leaf
+from grainclass._numba import borrowed, njit, njit_leaf
 
 # Flags per grain.
 BAD_CORNER = 1  # a corner not on exactly three faces
@@ -27,6 +27,16 @@ def _tables(size):
         np.zeros((size, 3), np.int32),
         np.zeros(size, np.int32),
     )
+
+
+@njit(inline="always")
+def _borrowed_tables(tables):
+    """:func:`_tables`'s arrays as :func:`~grainclass._numba.borrowed` views."""
+    first, second, count, corner_faces, on_faces = tables
+    return (
+        borrowed(first), borrowed(second), borrowed(count), borrowed(corner_faces),
+        borrowed(on_faces),
+    )  # fmt: skip
 
 
 @njit_leaf
@@ -133,8 +143,9 @@ def _adjacency_from_loops(
             tables = _tables(size)
         where[:] = -1
         m, flags[g] = _grain_adjacency(
-            f0, f1, loop_offsets, local, size, tables, nbr_offsets, neighbors, m, where
-        )
+            f0, f1, borrowed(loop_offsets), borrowed(local), size, _borrowed_tables(tables),
+            borrowed(nbr_offsets), borrowed(neighbors), m, borrowed(where),
+        )  # fmt: skip
         if clockwise:
             for f in range(f0, f1):
                 i, j = nbr_offsets[f], nbr_offsets[f + 1] - 1
@@ -153,5 +164,5 @@ def _adjacency_from_loops(
             if euler != 2:
                 flags[g] |= PINCHED
                 bad[g, 0], bad[g, 1], bad[g, 2] = 0, 0, euler
-        _clear(f0, f1, loop_offsets, local, size, tables)
+        _clear(f0, f1, borrowed(loop_offsets), borrowed(local), size, _borrowed_tables(tables))
     return m

@@ -12,7 +12,7 @@ forest is its trees sorted by (length, string) joined by ``+``.
 import numpy as np
 
 from grainclass._kernels.bits import ONE, ZERO, bit, full, lowest
-from grainclass._numba import njit, njit_leaf
+from grainclass._numba import borrowed, njit, njit_leaf
 
 OPEN, CLOSE, PLUS = 40, 41, 43  # "(", ")", "+"
 
@@ -85,6 +85,16 @@ def _forest_scratch(n, string_bytes):
         np.empty(max(n, 1), np.int32),  # roots
         np.empty(n + 1, np.uint64),  # removed vertices by round (bitset path)
     )
+
+
+@njit(inline="always")
+def _borrowed_forest(scratch):
+    """:func:`_forest_scratch`'s arrays as :func:`~grainclass._numba.borrowed` views."""
+    first_child, next_sibling, kids, buf, start, length, height, roots, by_round = scratch
+    return (
+        borrowed(first_child), borrowed(next_sibling), borrowed(kids), borrowed(buf),
+        borrowed(start), borrowed(length), borrowed(height), borrowed(roots), borrowed(by_round),
+    )  # fmt: skip
 
 
 @njit

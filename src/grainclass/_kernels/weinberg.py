@@ -30,7 +30,7 @@ as counter-clockwise seen from outside (the orientation of face 0's list for tex
 import numpy as np
 
 from grainclass._kernels.validate import _reverse_darts, _rotation, grain_lists
-from grainclass._numba import at, njit, njit_leaf
+from grainclass._numba import at, borrowed, njit, njit_leaf
 
 # Stamps count walks within one kernel call; the table is cleared before they could overflow.
 _MAX_STAMP = 1 << 30
@@ -260,17 +260,17 @@ def _weinberg_batch(
         symmetry[g], chirality[g], gen = _weinberg(
             n,
             shift,
-            rotations,
-            off,
-            sigma,
-            faces,
-            best,
+            borrowed(rotations),
+            borrowed(off),
+            borrowed(sigma),
+            borrowed(faces),
+            borrowed(best),
             gen,
-            seen,
-            code,
-            walks,
-            keys,
-            smallest_faces,
+            borrowed(seen),
+            borrowed(code),
+            borrowed(walks),
+            borrowed(keys),
+            borrowed(smallest_faces),
         )
 
 

@@ -16,8 +16,8 @@ from contextlib import suppress
 
 import click
 
-from grainclass import __version__, interrupts
-from grainclass.cli import output, signals
+from grainclass import __version__, compilation, interrupts
+from grainclass.cli import output, signals, startup
 from grainclass.cli.census import census_cmd
 from grainclass.cli.classify import classify_cmd
 from grainclass.cli.exit_codes import GRAINS, ExitCode
@@ -76,6 +76,7 @@ def main() -> None:
     os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
     open_closed_standard_streams()
     warnings.showwarning = _show_warning
+    compilation.on_first_compile(startup.announce_compilation)
     signals.catch_stops()
     stopped = False
     try:

@@ -14,6 +14,7 @@ from typing import Any, TypeVar
 
 import click
 
+from grainclass.cli import startup
 from grainclass.options import (
     DEFAULT_CHUNK_SIZE,
     DEFAULT_TRIPLE_EDGES,
@@ -191,7 +192,7 @@ def reading(
             type=click.IntRange(min=1, max=1 << 16),
             help="Threads for the compiled kernels (default: the CPUs this process may use).",
         ),
-        click.option("-q", "--quiet", is_flag=True, help=quiet_help),
+        click.option("-q", "--quiet", is_flag=True, help=quiet_help, callback=startup.note_quiet),
     ]
     if types_default is not None:
         options.append(

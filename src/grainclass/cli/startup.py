@@ -1,6 +1,7 @@
 """What a command does as it starts: standard input read ahead while the libraries load, the
 threads set, the cyclic garbage collector kept off until the first batch is through (see
-:func:`grainclass.cli.main`), and progress drawn as batches go by."""
+:func:`grainclass.cli.main`), a line on standard error when kernels compile, and progress drawn
+as batches go by."""
 
 from __future__ import annotations
 
@@ -13,6 +14,29 @@ if TYPE_CHECKING:
     from grainclass.options import ReadOptions
 
 T = TypeVar("T")
+
+COMPILING = "grainclass: compiling kernels, once per installation (this can take a minute)"
+_quiet = False  # -q was given: set while click parses, read from a compiling thread
+
+
+def note_quiet(ctx: object, param: object, quiet: bool) -> bool:
+    """The callback of -q/--quiet: remembers it for :func:`announce_compilation`, which runs in
+    whichever thread compiles, outside click's context."""
+    global _quiet
+    _quiet = quiet
+    return quiet
+
+
+def announce_compilation() -> None:
+    """Say on standard error that kernels compile (:func:`grainclass.compilation.on_first_compile`):
+    the first run after installation waits 10-30 s for numba, which a person at a terminal is
+    told even with -q (a line, once, as progress would be drawn); a log or a pipe is told
+    unless -q is given."""
+    terminal = sys.stderr.isatty()
+    if terminal or not _quiet:
+        # On a terminal a progress line may be drawn: the notice replaces it.
+        sys.stderr.write(("\r\033[K" if terminal else "") + COMPILING + "\n")
+        sys.stderr.flush()
 
 
 def after_start_up(items: Iterable[T]) -> Iterator[T]:

@@ -92,7 +92,9 @@ def periodic_axes(ctx: click.Context, param: click.Parameter, value: str | None)
     type=click.IntRange(min=1, max=1 << 16),
     help="Threads that compute the cells (default: the CPUs this process may use).",
 )
-@click.option("-q", "--quiet", is_flag=True, help="No report on stderr.")
+@click.option(
+    "-q", "--quiet", is_flag=True, help="No report on stderr.", callback=startup.note_quiet
+)
 def voronoi_cmd(
     n_seeds: int | None,
     points_path: str | None,

@@ -194,7 +194,7 @@ def _keep(surfaces, filled, out, g):
     return Surfaces(nbr_counts, neighbours, position, corners, loop_sizes, loop_grain)
 
 
-@njit(no_cpython_wrapper=True)
+@njit
 def _reserve(a, need):
     """``a``, or a copy twice as long, so that it holds ``need`` items."""
     if a.shape[0] >= need:

@@ -64,7 +64,7 @@ def _new_out(tables):
     )
 
 
-@njit(no_cpython_wrapper=True)
+@njit
 def _body(j, entries, tables, geometry, scratch, out):
     """The grain of body ``j`` of a file into ``out``: returns its GRAIN_ code, with the code's
     params in ``out.params``. ``scratch`` rows stamped by another body count as empty."""

@@ -120,7 +120,7 @@ def _noted(slow):
     return SlowNumbers(slow.entry[:k], slow.slot[:k], slow.start[:k], slow.end[:k], slow.count)
 
 
-@njit_leaf(inline="always")
+@njit_leaf
 def _slow_number(slow, entry, slot, s, e):
     """Note a number left to Python's float(): token ``buf[s:e]``, for ``slot`` of ``entry``."""
     k = slow.count[0]
@@ -128,7 +128,7 @@ def _slow_number(slow, entry, slot, s, e):
     slow.count[0] = k + 1
 
 
-@njit_leaf(inline="always")
+@njit_leaf
 def _vertex_entry(buf, tokens, ntok, n, entries, slow):
     """A vertex line's coordinates (tokens 1 to 3) into ``entries.xyz[n]``."""
     status = entries.status
@@ -146,7 +146,7 @@ def _vertex_entry(buf, tokens, ntok, n, entries, slow):
             _slow_number(slow, n, k, s, e)
 
 
-@njit_leaf(inline="always")
+@njit_leaf
 def _edge_entry(buf, tokens, ntok, n, periodic, marker, entries):
     """An edge line: tail and head ids, three wrap marks (a periodic file's), the triple-line
     mark (``marker``'s words among the attributes)."""
@@ -173,7 +173,7 @@ def _edge_entry(buf, tokens, ntok, n, periodic, marker, entries):
                 break
 
 
-@njit_leaf(inline="always")
+@njit_leaf
 def _list_entry(buf, tokens, ntok, n, body, entries, m, slow):
     """A facet's line, or a body's if ``body``: its signed ids into ``entries.ids[m:]`` (three
     or more for a facet, one or more for a body), and a body's ``volume``. Returns ``m`` after
@@ -207,7 +207,7 @@ def _list_entry(buf, tokens, ntok, n, body, entries, m, slow):
     return m
 
 
-@njit_leaf(no_cpython_wrapper=True)
+@njit_leaf
 def _leading_ids(buf, tokens, ntok, ids, m):
     """The signed ids at the start of tokens 1.. of an entry into ``ids`` from ``m``: ``(ok,
     m after them)``. What follows them must be an attribute's name; a token that is neither
@@ -231,7 +231,7 @@ def _leading_ids(buf, tokens, ntok, ids, m):
     return True, m
 
 
-@njit_leaf(no_cpython_wrapper=True)
+@njit_leaf
 def _wrap_mark(buf, s, e):
     """A wrap mark's value: ``*`` 0, ``+`` 1, ``-`` -1; 2 for any other token."""
     if e - s != 1:
@@ -246,7 +246,7 @@ def _wrap_mark(buf, s, e):
     return 2
 
 
-@njit_leaf(no_cpython_wrapper=True)
+@njit_leaf
 def _words_at(buf, tokens, t, marker):
     """Whether tokens ``t, t + 1, ...`` are the marker's words, in any case."""
     begin = 0

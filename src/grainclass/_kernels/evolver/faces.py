@@ -83,7 +83,7 @@ def _normals(darts, corners, position, marked):
     return normal
 
 
-@njit_leaf(no_cpython_wrapper=True)
+@njit_leaf
 def _root(parent, k):
     while parent[k] != k:
         parent[k] = parent[parent[k]]

@@ -35,12 +35,12 @@ class LineTokens(NamedTuple):
     """int64[1]: the number of the physical line reached (from 1)"""
 
 
-@njit_leaf(no_cpython_wrapper=True)
+@njit_leaf
 def _lower(c):
     return c + 32 if 65 <= c <= 90 else c
 
 
-@njit_leaf(no_cpython_wrapper=True)
+@njit_leaf
 def _word_is(buf, s, e, word):
     """Whether ``buf[s:e]`` is ``word`` (lower case) in any case."""
     if e - s != word.shape[0]:
@@ -51,7 +51,7 @@ def _word_is(buf, s, e, word):
     return i == e - s
 
 
-@njit_leaf(no_cpython_wrapper=True)
+@njit_leaf
 def _after_break(buf, p, end):
     """The position after the line break at ``p`` (\\r\\n is one break)."""
     if buf[p] == RETURN and p + 1 < end and buf[p + 1] == NEWLINE:
@@ -59,7 +59,7 @@ def _after_break(buf, p, end):
     return p + 1
 
 
-@njit_leaf(no_cpython_wrapper=True)
+@njit_leaf
 def _line_end(buf, p, end):
     """The first line break from ``p`` on (or ``end``)."""
     while p < end and _CLASS[buf[p]] != C_BREAK:
@@ -67,7 +67,7 @@ def _line_end(buf, p, end):
     return p
 
 
-@njit_leaf(no_cpython_wrapper=True)
+@njit_leaf
 def _continues(buf, p, end):
     """Whether a backslash before ``p`` continues its line: only blanks, or a // comment, follow
     it on the line."""
@@ -78,7 +78,7 @@ def _continues(buf, p, end):
     return buf[p] == SLASH and p + 1 < end and buf[p + 1] == SLASH
 
 
-@njit_leaf(no_cpython_wrapper=True)
+@njit_leaf
 def _comment_at(buf, p, end, last_close):
     """Whether a comment starts at ``p``: ``//``, or a ``/*`` that closes."""
     if p + 1 >= end or buf[p] != SLASH:
@@ -86,7 +86,7 @@ def _comment_at(buf, p, end, last_close):
     return buf[p + 1] == SLASH or (buf[p + 1] == STAR and p + 2 <= last_close)
 
 
-@njit_leaf(no_cpython_wrapper=True)
+@njit_leaf
 def _special(buf, p, end, last_close):
     """Whether the byte at ``p`` is not part of a token: a blank, a line break, a comment's
     start, or a backslash that joins its line to the next."""
@@ -100,7 +100,7 @@ def _special(buf, p, end, last_close):
     return True
 
 
-@njit_leaf(no_cpython_wrapper=True)
+@njit_leaf
 def _lex_line(buf, p, end, last_close, tokens):
     """The tokens of the logical line at ``p`` into ``tokens``: ``(p after it, tokens, its first
     line number, at end of file)``; ``tokens.line[0]`` counts physical lines.
@@ -160,7 +160,7 @@ def _lex_line(buf, p, end, last_close, tokens):
     return p, ntok, first, True
 
 
-@njit_leaf(no_cpython_wrapper=True)
+@njit_leaf
 def _last_close(buf, start, end):
     """Where the last ``*/`` of ``buf[start:end]`` starts (``start - 1`` if none)."""
     for p in range(end - 2, start - 1, -1):
@@ -169,7 +169,7 @@ def _last_close(buf, start, end):
     return start - 1
 
 
-@njit_leaf(no_cpython_wrapper=True)
+@njit_leaf
 def _count_breaks(buf, start, end):
     n = 0
     for p in range(start, end):

@@ -27,7 +27,7 @@ _W_NAN = np.frombuffer(b"nan", np.uint8)
 _POWERS = np.array([10.0**k for k in range(23)])  # exact in float64
 
 
-@njit_leaf(no_cpython_wrapper=True)
+@njit_leaf
 def _is_decimal(buf, s, e):
     p = s
     while p < e and ZERO <= buf[p] <= NINE:
@@ -35,7 +35,7 @@ def _is_decimal(buf, s, e):
     return e > s and p == e
 
 
-@njit_leaf(no_cpython_wrapper=True)
+@njit_leaf
 def _parse_int(buf, s, e):
     """``(ok, value)`` of an integer token: a sign, then 1 to 18 ASCII digits."""
     p = s
@@ -126,7 +126,7 @@ def _parse_float(buf, s, e):
     return ENTRY_OK, sign * (float(mantissa) / _POWERS[-exponent])
 
 
-@njit_leaf(no_cpython_wrapper=True)
+@njit_leaf
 def _is_number(buf, s, e):
     """What the periods rows must be: ``[-+]?(\\d+\\.?\\d*|\\.\\d+)([eE][-+]?\\d+)?``."""
     p = s

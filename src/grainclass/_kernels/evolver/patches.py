@@ -101,7 +101,7 @@ def _patches(entries, entry, facet_map, scratch, stamp):
     return Patches(slot, sign, facet_id)
 
 
-@njit_leaf(no_cpython_wrapper=True)
+@njit_leaf
 def _check_patches(patches, periodic, tables, scratch, params):
     """GRAIN_OK, or why the patches are not a surface: a facet listed more than once (only
     once each way, and only in a periodic file, is allowed), a facet or edge not defined, in
@@ -197,7 +197,7 @@ def _darts(patches, sides, scratch, stamp):
     return darts, edges, ambiguous
 
 
-@njit_leaf(no_cpython_wrapper=True)
+@njit_leaf
 def _check_closed(patches, darts, body_edges, periodic, tables, params):
     """GRAIN_OK, or why the darts do not close up: an edge with other than two darts (an even
     number, in a periodic file), or two on an edge that run along it the same way."""
@@ -218,7 +218,7 @@ def _check_closed(patches, darts, body_edges, periodic, tables, params):
     return GRAIN_OK
 
 
-@njit_leaf(no_cpython_wrapper=True)
+@njit_leaf
 def _undefined_vertex(key, tables, dart_edge, params):
     """GRAIN_UNDEFINED for a vertex without coordinates, named with the first edge the body
     uses that ends at it."""

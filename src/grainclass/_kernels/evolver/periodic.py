@@ -52,12 +52,12 @@ class Corners(NamedTuple):
     """int64[n]: its head corner"""
 
 
-@njit_leaf(no_cpython_wrapper=True)
+@njit_leaf
 def _dot3(a, b):
     return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 
 
-@njit_leaf(no_cpython_wrapper=True)
+@njit_leaf
 def _shifted(geometry, entry, off, out):
     """The position of vertex ``entry`` translated by ``off`` (whole periods) into ``out``."""
     xyz, periods = geometry.xyz, geometry.periods
@@ -99,7 +99,7 @@ def _pair_ambiguous(patches, darts, body_edges, tables, scratch, stamp, geometry
     return GRAIN_UNPAIRED
 
 
-@njit(no_cpython_wrapper=True)
+@njit
 def _pair_around(rule, stamp, patches, darts, edge_darts, tables, scratch, geometry):
     """Pair off the darts of edges that a body uses more than twice (it meets its own image
     along them), by the geometry around each edge: from a patch, turning about the edge into

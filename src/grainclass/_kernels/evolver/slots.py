@@ -39,7 +39,7 @@ class Defined(NamedTuple):
     """int64[n]: the line of its last unreadable one (0: none)"""
 
 
-@njit_leaf(no_cpython_wrapper=True)
+@njit_leaf
 def _hash(x, mask):
     h = np.uint64(x) * np.uint64(0x9E3779B97F4A7C15)
     return np.int64((h ^ (h >> np.uint64(31))) & np.uint64(mask))
@@ -58,7 +58,7 @@ def _new_map(n, most):
     )
 
 
-@njit_leaf(no_cpython_wrapper=True)
+@njit_leaf
 def _slot(table, x, insert):
     """The slot of id ``x``, or -1 if it has none and ``insert`` is False."""
     keys, slots, count, direct = table
@@ -80,7 +80,7 @@ def _slot(table, x, insert):
     return slots[h]
 
 
-@njit(no_cpython_wrapper=True)
+@njit
 def _slots(ids, room):
     """A map with a slot for each distinct id of ``ids``, with room for ``room`` ids in all,
     and the slot of each."""
@@ -94,7 +94,7 @@ def _slots(ids, room):
     return table, slot
 
 
-@njit(no_cpython_wrapper=True)
+@njit
 def _defined(rows, slot, n, entries):
     """For ``n`` slots, of which entries ``rows`` fill ``slot``: each slot's id and the lines
     that define it."""

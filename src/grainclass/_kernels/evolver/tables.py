@@ -112,7 +112,7 @@ class FileTables(NamedTuple):
     """some edge carries the triple-line mark"""
 
 
-@njit(no_cpython_wrapper=True)
+@njit
 def _file_tables(entries, f0, f1):
     """The tables of the file whose entries are ``f0:f1``."""
     v_rows, e_rows, f_rows, b_rows = _rows_by_kind(entries.kind, f0, f1)
@@ -241,7 +241,7 @@ def _sides(facet_entry, entries, edges):
     return sides, state
 
 
-@njit_leaf(no_cpython_wrapper=True)
+@njit_leaf
 def _fill_sides(facet_entry, entries, edges, sides, state):
     """The sides and state of each facet that has a line."""
     for s in range(facet_entry.shape[0]):
@@ -250,7 +250,7 @@ def _fill_sides(facet_entry, entries, edges, sides, state):
             state[s] = _facet_sides(s, entries.ids, entries.first[i], edges, sides)
 
 
-@njit_leaf(inline="always")
+@njit_leaf
 def _facet_sides(s, ids, first, edges, sides):
     """The sides of facet slot ``s``, whose line lists ``ids[first:]``: returns its state."""
     a = sides.start[s]

@@ -153,7 +153,7 @@ def _tokenize(buf, file_starts, marker):
     return Tokens(_first_entries(entries, filled[0], filled[1]), _noted(slow), files)
 
 
-@njit_leaf(no_cpython_wrapper=True)
+@njit_leaf
 def _tokenize_file(buf, file_starts, f, marker, tokens, out, filled):
     """File ``f`` into ``out``: its entries and their ids after the ``filled`` ones, which it
     counts in; its status and periods."""
@@ -219,7 +219,7 @@ def _tokenize_file(buf, file_starts, f, marker, tokens, out, filled):
     filled[0], filled[1] = n, m
 
 
-@njit_leaf(no_cpython_wrapper=True)
+@njit_leaf
 def _keyword(buf, s, e):
     """The keyword that token ``buf[s:e]`` is, in any case: a section's (its entries' kind),
     another KEY_, or KEY_OTHER. Surface Evolver takes a section's keyword with a colon too
@@ -251,7 +251,7 @@ def _keyword(buf, s, e):
     return KEY_OTHER
 
 
-@njit_leaf(no_cpython_wrapper=True)
+@njit_leaf
 def _periods(buf, p, end, last_close, tokens, f, files, slow):
     """The rows after a ``periods`` line at ``p``, into ``files.periods[f]``: the next three
     lines with tokens, whatever they hold, or those up to the end of the file; their first nine
@@ -282,7 +282,7 @@ def _periods(buf, p, end, last_close, tokens, f, files, slow):
             return p, eof, numbers and values == 9, True
 
 
-@njit_leaf(no_cpython_wrapper=True)
+@njit_leaf
 def _header_line(header, word, number, buf, tokens, ntok):
     """``header`` with line ``number`` (keyword ``word``, ``ntok`` tokens) taken in."""
     string_line, space_dim, space_line, surface_dim, surface_line, simplex_line, symmetry_line = (
@@ -307,7 +307,7 @@ def _header_line(header, word, number, buf, tokens, ntok):
     )
 
 
-@njit_leaf(no_cpython_wrapper=True)
+@njit_leaf
 def _header_status(header):
     """``(FILE_ code, line, aux)`` of a file's header: FILE_OK for a surface in 3-space."""
     string = header.string_line > 0 or header.surface_dim == 1
