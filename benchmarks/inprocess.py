@@ -116,9 +116,12 @@ def main() -> None:
 
     grains, runs = importlib.import_module(suite).measures(Path(path))
     replies.write(f"ready {grains}\n")
+    jobs = None
     for line in sys.stdin:
         threads, name = line.split(maxsplit=1)
-        set_jobs(int(threads))
+        if int(threads) != jobs:  # a new pool of threads only when their number changes
+            jobs = int(threads)
+            set_jobs(jobs)
         start = time.perf_counter()
         try:
             runs[name.strip()]()
