@@ -108,12 +108,17 @@ lint: install
 	$(BIN)/python -m ruff format --check src tests scripts benchmarks
 
 # Speed and memory, measured in one run (plantri n = 14, 15, 16, three rounds; about fifteen minutes).
+# Before and after in one run: BENCH_ARGS='--compare-src DIR' times the grainclass of another
+# checkout DIR (with its own make install) in turn with this one, in the same rounds, and gives
+# for each figure ours, theirs and ours/theirs (about twice as long). Here for bench-prisms and
+# bench-census too.
+BENCH_ARGS ?=
 bench: voro install
-	$(BIN)/python benchmarks/bench.py
+	$(BIN)/python benchmarks/bench.py $(BENCH_ARGS)
 
 # One giant grain: the k-gonal prism for k = 1,000, 4,000 and 20,000 (a minute or two).
 bench-prisms: install
-	$(BIN)/python benchmarks/bench.py --prisms-only
+	$(BIN)/python benchmarks/bench.py --prisms-only $(BENCH_ARGS)
 
 # Mutation fuzzing of every reader from the seeds in tests/data (10^5 cases, minutes; not in CI):
 # any exception that is not a typed error, a lost row, a case slower than 2 s. FUZZ_CASES=N.
@@ -123,7 +128,7 @@ fuzz: install
 
 # The census (n = 16 and 17, several minutes) against plantri alone on the same parts.
 bench-census: install
-	$(BIN)/python benchmarks/bench.py --census-only --census-sizes 16 17
+	$(BIN)/python benchmarks/bench.py --census-only --census-sizes 16 17 $(BENCH_ARGS)
 
 # The paper's Table II, split-type table and all* round rows for n = 13 and 14 (seconds).
 reproduce-enumeration: install

@@ -20,9 +20,8 @@ from pathlib import Path
 
 import pandas as pd
 
-sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests"))
 from grainclass.render import render_frame
-from test_enumeration import CLASS_COLUMNS, SPLIT, TABLE_II
+from paper_tables import CLASS_COLUMNS, SPLIT, TABLE_II
 
 
 def main() -> int:

@@ -14,23 +14,16 @@ import tempfile
 import time
 from pathlib import Path
 
+from grainclass.errors import GrainclassError
 from grainclass.plantri import find_plantri
-
-sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests"))
-from test_enumeration import (
-    CLASS_COLUMNS,
-    ROUND_ALL,
-    ROUND_COLUMNS,
-    SPLIT,
-    TABLE_II,
-)
+from paper_tables import CLASS_COLUMNS, ROUND_ALL, ROUND_COLUMNS, SPLIT, TABLE_II
 
 
-def _run(n: int, directory: Path) -> tuple[dict, float]:
+def _run(plantri: str, n: int, directory: Path) -> tuple[dict, float]:
     out = directory / f"all{n}.parquet"
     start = time.perf_counter()
     with subprocess.Popen(
-        [find_plantri(), str(n)], stdout=subprocess.PIPE, stderr=subprocess.DEVNULL
+        [plantri, str(n)], stdout=subprocess.PIPE, stderr=subprocess.DEVNULL
     ) as plantri:
         subprocess.run(
             [sys.executable, "-m", "grainclass", "classify", "-", "-o", str(out), "-q"],
@@ -61,10 +54,15 @@ def _line(label: str, values) -> str:
 
 
 def main() -> int:
+    try:
+        plantri = find_plantri()
+    except GrainclassError as error:
+        print(f"Error: {error}", file=sys.stderr)
+        return 1
     same = True
     with tempfile.TemporaryDirectory() as tmp:
         for n in (13, 14):
-            summary, seconds = _run(n, Path(tmp))
+            summary, seconds = _run(plantri, n, Path(tmp))
             print(
                 f"n = {n}: {summary['headline']['grains']} triangulations, "
                 f"plantri | classify in {seconds:.1f} s"

@@ -18,30 +18,7 @@ import tempfile
 import time
 from pathlib import Path
 
-N = 268_402
-# tbl:distribution_V_data, total row.
-CLASSES = {
-    "stacked": 1902,
-    "flag": 27810,
-    "flag+1": 59715,
-    "flag+1+1": 60760,
-    "flag+2": 6530,
-    "flag>=3": 108422,
-    "sc": 315,
-    "sc+1": 743,
-    "sc>=2": 2205,
-}
-# tbl:distribution, row V-268402 (percent).
-ROUND = {
-    "round0": 10.36,
-    "round<=1": 32.61,
-    "round<=2": 57.71,
-    "round<=3": 77.17,
-    "round<=4": 88.85,
-    "round<=5": 94.75,
-    "round<=6": 97.32,
-    "sc": 1.22,
-}
+from paper_tables import V_CLASSES, V_GRAINS, V_ROUND
 
 
 def main() -> int:
@@ -53,7 +30,7 @@ def main() -> int:
         out = Path(tmp) / "v.parquet"
         start = time.perf_counter()
         subprocess.run(
-            [*gc, "voronoi", str(N), "--seed", str(args.seed), "-o", str(out)], check=True
+            [*gc, "voronoi", str(V_GRAINS), "--seed", str(args.seed), "-o", str(out)], check=True
         )
         seconds = time.perf_counter() - start
         summary = json.loads(
@@ -62,7 +39,7 @@ def main() -> int:
             ).stdout
         )
     head = summary["headline"]
-    print(f"{N} seeds (seed {args.seed}): generated and classified in {seconds:.1f} s")
+    print(f"{V_GRAINS} seeds (seed {args.seed}): generated and classified in {seconds:.1f} s")
     print(
         f"mean faces per grain {head['mean_faces']:.3f} (paper 15.535, theory "
         f"{48 * math.pi**2 / 35 + 2:.3f}); triangles {head['triangle_faces_percent']:.2f}% "
@@ -72,14 +49,14 @@ def main() -> int:
     rnd = next(r for r in summary["round"] if r["grains"] == "all")
     worst = 0.0
     print(f"  {'':10s}{'paper %':>9s}{'here %':>9s}{'dev/SE':>8s}{'dev/SEd':>9s}")
-    rows = [(k, 100 * v / N, 100 * total[k] / total["all"]) for k, v in CLASSES.items()]
-    rows += [(k, v, rnd[k]) for k, v in ROUND.items()]
+    rows = [(k, 100 * v / V_GRAINS, 100 * total[k] / total["all"]) for k, v in V_CLASSES.items()]
+    rows += [(k, v, rnd[k]) for k, v in V_ROUND.items()]
     grains = total["all"]
     for name, paper, here in rows:
         p, q = paper / 100, here / 100
-        se = 100 * math.sqrt(p * (1 - p) / N)
+        se = 100 * math.sqrt(p * (1 - p) / V_GRAINS)
         # Both are samples: the difference of two binomial fractions has this standard error.
-        se_difference = 100 * math.sqrt(p * (1 - p) / N + q * (1 - q) / grains)
+        se_difference = 100 * math.sqrt(p * (1 - p) / V_GRAINS + q * (1 - q) / grains)
         worst = max(worst, abs(here - paper) / se_difference)
         print(
             f"  {name:10s}{paper:9.2f}{here:9.2f}{(here - paper) / se:8.1f}"

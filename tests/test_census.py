@@ -1,6 +1,6 @@
 """`grainclass census`: parts on Dask add up to the paper's tables and to plantri's own counts.
 
-Expected values are the paper's tables (transcribed in test_enumeration.py), plantri's counts
+Expected values are the paper's tables (transcribed in scripts/paper_tables.py), plantri's counts
 and the single-stream census of ``summarize``; fake plantri programs (shell scripts around the
 real one) make parts slow, lie about counts or fail, so that the checks are seen to fail.
 """
@@ -32,7 +32,7 @@ from grainclass.cli.progress import CensusPrinter
 from grainclass.options import ReadOptions
 from grainclass.pipeline import tallies
 from grainclass.summary import summarize
-from test_enumeration import CLASS_COLUMNS, SPLIT, TABLE_II
+from paper_tables import CLASS_COLUMNS, SPLIT, TABLE_II
 
 
 @pytest.fixture(scope="module")
