@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import click
 
+from grainclass import interrupts
 from grainclass.cli.exit_codes import ExitCode
 from grainclass.cli.options import FLAGS
 from grainclass.cli.output import quiet_broken_pipe
@@ -62,9 +63,14 @@ class Command(click.Command):
     def invoke(self, ctx: click.Context) -> object:
         try:
             return super().invoke(ctx)
-        except BrokenPipeError:
-            raise click.exceptions.Exit(quiet_broken_pipe()) from None
-        except GrainclassError as exc:
+        except Exception as exc:
+            # A failure while a stop is pending is most likely the stop's doing (a child process
+            # it ended, a worker that died starting): the run ends as stopped.
+            interrupts.checkpoint()
+            if isinstance(exc, BrokenPipeError):
+                raise click.exceptions.Exit(quiet_broken_pipe()) from None
+            if not isinstance(exc, GrainclassError):
+                raise
             if exit_code(exc) == ExitCode.USAGE:
                 raise click.UsageError(message(exc), ctx) from None
             failure = click.ClickException(message(exc))

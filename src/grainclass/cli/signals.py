@@ -45,7 +45,8 @@ def stop(signum: int, frame: object) -> None:
 
 def _end_unless_stopped(signum: int) -> None:
     """End the process if, :data:`GRACE_SECONDS` after the stop was asked for, no checkpoint has
-    raised it: its temporary outputs go, and it exits as a stopped run does."""
+    raised it: its temporary outputs and worker processes go, and it exits as a stopped run
+    does."""
     deadline = time.monotonic() + GRACE_SECONDS
     while time.monotonic() < deadline:
         if _done.wait(0.05) or interrupts.raised():
@@ -54,6 +55,12 @@ def _end_unless_stopped(signum: int) -> None:
     from grainclass.cli.exit_codes import ExitCode
 
     remove_temporaries()
+    # Worker processes (a census's local Dask cluster) would outlive a process that ends so.
+    multiprocessing = sys.modules.get("multiprocessing")
+    if multiprocessing is not None:
+        for child in multiprocessing.active_children():
+            with contextlib.suppress(OSError, ValueError):
+                child.terminate()
     name = signal.Signals(signum).name
     said = "interrupted" if signum == signal.SIGINT else f"stopped by {name}"
     with contextlib.suppress(OSError):
