@@ -25,10 +25,10 @@ from grainclass.census import (
     Part,
     PartResult,
     ProgressTracker,
-    dask_client,
     run_census,
 )
 from grainclass.cli.progress import CensusPrinter
+from grainclass.cluster import dask_client
 from grainclass.options import ReadOptions
 from grainclass.pipeline import tallies
 from grainclass.summary import summarize

@@ -210,3 +210,16 @@ def test_kelvin_cells_in_a_torus_have_the_areas_of_the_formula():
     """12 + 24 sqrt(3) for edge sqrt(2): 6 squares of area 2, 8 regular hexagons of 3 sqrt(3)."""
     for row in _rows(DATA / "kelvin_bcc_torus.fe"):
         assert row["area"] == pytest.approx(12 + 24 * math.sqrt(3), rel=1e-12)
+
+
+def test_an_edge_of_no_length_where_a_cell_meets_its_image_is_named(tmp_path):
+    """Edge 1 of the one-cell cube cut down to a loop at vertex 1 (no wrap marks): pairing the
+    patches around it divided by its length, and the reader ended in a ZeroDivisionError."""
+    text = (DATA / "cube_one_cell.fe").read_text()
+    assert "\n1\t1\t1\t*\t+\t*\n" in text
+    path = tmp_path / "point_edge.fe"
+    path.write_text(text.replace("\n1\t1\t1\t*\t+\t*\n", "\n1\t1\t1\n"))
+    (row,) = _rows(path)
+    assert row["status"] == "invalid"
+    assert "uses edge 1 8 times" in row["error"]
+    assert "the edge has no length" in row["error"]

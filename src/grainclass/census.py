@@ -12,21 +12,18 @@ minimum degree 4 (``-m4``: flag plus sc, the fundamental ones).
 
 from __future__ import annotations
 
-import contextlib
 import json
-import logging
 import os
 import threading
 import time
 import uuid
-from collections.abc import Callable, Iterable, Iterator, Sequence
-from contextlib import contextmanager
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING
 
 from grainclass import interrupts
-from grainclass.errors import CensusError, MissingDependencyError, OptionError, OutputError
+from grainclass.errors import CensusError, OutputError
 from grainclass.options import DEFAULT_CHUNK_SIZE
 from grainclass.plantri import CHECKS, plantri_count, plantri_version, run_plantri
 from grainclass.vocabulary import TABLES
@@ -38,8 +35,6 @@ if TYPE_CHECKING:
     from grainclass.summary import Summary
 
 PROGRESS_TOPIC = "grainclass-census-progress"
-SCHEDULER_TIMEOUT = "30s"  # to reach a running scheduler (--scheduler)
-LOCAL_WORKERS_PER_CPU = 4  # more worker processes than this on a machine only crowd its memory
 
 
 @dataclass(frozen=True, order=True)
@@ -547,80 +542,3 @@ def write_tables(directory: Path, result: CensusResult) -> None:
             sink.write(frame.to_csv(index=False).encode())
     with atomic_output(str(directory / "provenance.json")) as sink:
         sink.write((json.dumps(result.provenance, indent=2) + "\n").encode())
-
-
-def require_dask() -> None:
-    """Raise :class:`MissingDependencyError` unless Dask's distributed scheduler can be
-    imported (the census extra)."""
-    try:
-        import distributed  # noqa: F401
-    except ImportError as exc:
-        raise MissingDependencyError(
-            f"the census needs Dask ({exc.name} is missing): pip install 'grainclass[census]'"
-        ) from None
-
-
-@contextmanager
-def dask_client(scheduler: str | None = None, workers: int | None = None) -> Iterator[Client]:
-    """A Dask client: of the cluster whose scheduler is at ``scheduler``, else of a new local
-    cluster of ``workers`` processes (default: one per core), one thread each, closed on the way
-    out."""
-    from distributed import Client, LocalCluster
-
-    from grainclass.parallel import available_cpus, interrupts_blocked
-
-    if scheduler:
-        try:
-            client = Client(scheduler, timeout=SCHEDULER_TIMEOUT)
-        except (OSError, ValueError, TimeoutError) as exc:
-            raise CensusError(f"no Dask scheduler at {scheduler!r}: {exc}") from None
-        with client:
-            yield client
-        return
-    most = LOCAL_WORKERS_PER_CPU * available_cpus()
-    if workers is not None and workers > most:
-        raise OptionError(
-            "workers",
-            f"a local cluster of {workers} worker processes on {available_cpus()} CPUs: at most "
-            f"{most} (each worker holds the libraries, some 200 MB)",
-        )
-
-    # A worker restarted after a loss is not news here. silence_logs holds Dask's logs to errors
-    # while the cluster runs, not while it closes, when a census stopped by Ctrl-C would log its
-    # links to the workers closing, with tracebacks: they are held so until the cluster is gone.
-    logs = logging.getLogger("distributed")
-    level = logs.level
-    logs.setLevel(logging.CRITICAL)
-    try:
-        with contextlib.ExitStack() as stack:
-            # The workers start (from Dask's threads, which take this thread's signal mask)
-            # with Ctrl-C held back until they take it up (dask_setup, below); here it is held
-            # until the cluster is up and will be closed on the way out.
-            with interrupts_blocked():
-                cluster = stack.enter_context(
-                    LocalCluster(
-                        n_workers=workers or available_cpus(),
-                        threads_per_worker=1,
-                        processes=True,
-                        # No dashboard (bokeh is not a dependency); the scheduler's small HTTP
-                        # server listens on a free local port, so that several clusters can run
-                        # at once.
-                        dashboard_address="127.0.0.1:0",
-                        # A failed part is reported by the census itself, once: the workers'
-                        # own reports of it (a traceback each) stay out of the way.
-                        silence_logs=logging.CRITICAL,
-                        preload=[__name__],
-                    )
-                )
-            yield stack.enter_context(Client(cluster))
-    finally:
-        logs.setLevel(level)
-
-
-def dask_setup(worker: object) -> None:
-    """Run by each worker process of :func:`dask_client`'s local cluster once it has started:
-    Ctrl-C ends it at once and quietly (``parallel.end_quietly_on_interrupt``), not with a page
-    of traceback from each worker."""
-    from grainclass.parallel import end_quietly_on_interrupt
-
-    end_quietly_on_interrupt()

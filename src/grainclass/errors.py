@@ -85,6 +85,10 @@ class PlantriError(GrainclassError):
     """plantri failed, or its report says no number of triangulations."""
 
 
+class ClusterError(GrainclassError):
+    """A Dask cluster that cannot be reached or started."""
+
+
 class CensusError(GrainclassError):
     """A census part whose count disagrees with plantri's, failed tasks, or a census directory
     that holds another census."""

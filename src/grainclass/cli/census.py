@@ -66,8 +66,9 @@ def census_cmd(
     checked against plantri's own (-u, -c4, -m4) and the tables are printed and written to DIR.
     Needs the census extra: pip install 'grainclass[census]'.
     """
-    from grainclass.census import dask_client, require_dask, run_census
+    from grainclass.census import run_census
     from grainclass.cli.progress import CensusPrinter
+    from grainclass.cluster import dask_client, require_dask
 
     startup.resume_collection()
     require_dask()

@@ -371,6 +371,12 @@ def _message(code: int, body: int, params: list[int]) -> str:
             f"not a closed surface: body {body} uses edge {a} {b} times (where it touches its "
             "own periodic image), and its facets around the edge do not pair off, once each way"
         )
+    if code == codes.GRAIN_POINT_EDGE:
+        return (
+            f"not a closed surface: body {body} uses edge {a} {b} times (where it touches its "
+            "own periodic image), and the edge has no length: its facets cannot be paired by "
+            "the way they turn about it"
+        )
     if code == codes.GRAIN_AROUND:
         return (
             f"not a sphere: unwrapped across the periodic box, the surface of body {body} does "

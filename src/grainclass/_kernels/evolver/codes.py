@@ -39,6 +39,7 @@ GRAIN_NO_TRIPLE = 13
 GRAIN_NOT_DISC = 14  # (face,)
 GRAIN_NO_BODIES = 15  # (facets line or 0, kind of the first unreadable entry or -1, its line)
 GRAIN_FILE = 16  # the file's status is not FILE_OK
+GRAIN_POINT_EDGE = 17  # (edge id, uses): an edge the body uses more than twice has no length
 
 # Users of an undefined id, for GRAIN_UNDEFINED.
 USER_LIST, USER_FACET, USER_EDGE = 0, 1, 2

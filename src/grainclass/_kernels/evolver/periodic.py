@@ -14,9 +14,11 @@ from typing import NamedTuple
 
 import numpy as np
 
-from grainclass._kernels.evolver.codes import GRAIN_OK, GRAIN_UNPAIRED
+from grainclass._kernels.evolver.codes import GRAIN_OK, GRAIN_POINT_EDGE, GRAIN_UNPAIRED
 from grainclass._kernels.evolver.patches import _undefined_vertex
 from grainclass._numba import njit, njit_leaf
+
+NO_LENGTH = -2  # what _pair_around gives for an edge of no length, beside a vertex key or -1
 
 
 class Geometry(NamedTuple):
@@ -84,7 +86,7 @@ def _pair_ambiguous(patches, darts, body_edges, tables, scratch, stamp, geometry
     edge_darts = EdgeDarts(body_edges.slot, body_edges.count, start, on_edge)
     ok, failed, key = False, -1, -1
     for attempt in range(2):  # outward lists, then inward ones
-        if attempt == 0 or key < 0:
+        if attempt == 0 or key == -1:
             rule = 1 - 2 * attempt
             ok, failed, key = _pair_around(
                 rule, stamp, patches, darts, edge_darts, tables, scratch, geometry
@@ -96,7 +98,7 @@ def _pair_ambiguous(patches, darts, body_edges, tables, scratch, stamp, geometry
     if key >= 0:
         return _undefined_vertex(key, tables, darts.edge, params)
     params[0], params[1] = tables.edges.id[body_edges.slot[failed]], body_edges.count[failed]
-    return GRAIN_UNPAIRED
+    return GRAIN_POINT_EDGE if key == NO_LENGTH else GRAIN_UNPAIRED
 
 
 @njit
@@ -107,7 +109,8 @@ def _pair_around(rule, stamp, patches, darts, edge_darts, tables, scratch, geome
     body that lists its facets inwards), the first facet met is the patch's partner, a patch
     of the same body that runs along the edge the other way.
 
-    Returns ``(ok, local edge that failed, vertex key without coordinates or -1)``."""
+    Returns ``(ok, local edge that failed, vertex key without coordinates, or NO_LENGTH for an
+    edge of no length, or -1)``."""
     vk_entry = tables.vertices.entry
     edges, uses, sides = tables.edges, tables.uses, tables.sides
     point = np.empty(3)
@@ -130,6 +133,8 @@ def _pair_around(rule, stamp, patches, darts, edge_darts, tables, scratch, geome
         for x in range(3):
             along[x] -= tail[x]
         along2 = _dot3(along, along)
+        if along2 == 0.0:  # no direction to turn about
+            return False, local, NO_LENGTH
         # The direction from the edge into each facet that uses it (its centre, in its frame).
         into = np.empty((k, 3))
         for c in range(k):

@@ -1,0 +1,96 @@
+"""A Dask client: of a running cluster (a scheduler's address), or of a local cluster of
+worker processes started for the run and closed with it; what runs on more than one process
+(the census) runs on it."""
+
+from __future__ import annotations
+
+import contextlib
+import logging
+from collections.abc import Iterator
+from contextlib import contextmanager
+from typing import TYPE_CHECKING
+
+from grainclass.errors import ClusterError, MissingDependencyError, OptionError
+
+if TYPE_CHECKING:
+    from distributed import Client
+
+SCHEDULER_TIMEOUT = "30s"  # to reach a running scheduler (--scheduler)
+LOCAL_WORKERS_PER_CPU = 4  # more worker processes than this on a machine only crowd its memory
+
+
+def require_dask() -> None:
+    """Raise :class:`MissingDependencyError` unless Dask's distributed scheduler can be
+    imported (the census extra)."""
+    try:
+        import distributed  # noqa: F401
+    except ImportError as exc:
+        raise MissingDependencyError(
+            f"this needs Dask ({exc.name} is missing): pip install 'grainclass[census]'"
+        ) from None
+
+
+@contextmanager
+def dask_client(scheduler: str | None = None, workers: int | None = None) -> Iterator[Client]:
+    """A Dask client: of the cluster whose scheduler is at ``scheduler``, else of a new local
+    cluster of ``workers`` processes (default: one per core), one thread each, closed on the way
+    out."""
+    from distributed import Client, LocalCluster
+
+    from grainclass.parallel import available_cpus, interrupts_blocked
+
+    if scheduler:
+        try:
+            client = Client(scheduler, timeout=SCHEDULER_TIMEOUT)
+        except (OSError, ValueError, TimeoutError) as exc:
+            raise ClusterError(f"no Dask scheduler at {scheduler!r}: {exc}") from None
+        with client:
+            yield client
+        return
+    most = LOCAL_WORKERS_PER_CPU * available_cpus()
+    if workers is not None and workers > most:
+        raise OptionError(
+            "workers",
+            f"a local cluster of {workers} worker processes on {available_cpus()} CPUs: at most "
+            f"{most} (each worker holds the libraries, some 200 MB)",
+        )
+
+    # A worker restarted after a loss is not news here. silence_logs holds Dask's logs to errors
+    # while the cluster runs, not while it closes, when a census stopped by Ctrl-C would log its
+    # links to the workers closing, with tracebacks: they are held so until the cluster is gone.
+    logs = logging.getLogger("distributed")
+    level = logs.level
+    logs.setLevel(logging.CRITICAL)
+    try:
+        with contextlib.ExitStack() as stack:
+            # The workers start (from Dask's threads, which take this thread's signal mask)
+            # with Ctrl-C held back until they take it up (dask_setup, below); here it is held
+            # until the cluster is up and will be closed on the way out.
+            with interrupts_blocked():
+                cluster = stack.enter_context(
+                    LocalCluster(
+                        n_workers=workers or available_cpus(),
+                        threads_per_worker=1,
+                        processes=True,
+                        # No dashboard (bokeh is not a dependency); the scheduler's small HTTP
+                        # server listens on a free local port, so that several clusters can run
+                        # at once.
+                        dashboard_address="127.0.0.1:0",
+                        # A failed part is reported by the census itself, once: the workers'
+                        # own reports of it (a traceback each) stay out of the way.
+                        silence_logs=logging.CRITICAL,
+                        preload=[__name__],
+                    )
+                )
+            yield stack.enter_context(Client(cluster))
+    finally:
+        logs.setLevel(level)
+
+
+def dask_setup(worker: object) -> None:
+    """Run by each worker process of :func:`dask_client`'s local cluster once it has started:
+    Ctrl-C ends it at once and quietly (``parallel.end_quietly_on_interrupt``), not with a page
+    of traceback from each worker."""
+    from grainclass.parallel import end_quietly_on_interrupt
+
+    end_quietly_on_interrupt()
