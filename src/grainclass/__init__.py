@@ -12,7 +12,6 @@ From paths in one call: :func:`read_grains` (per-grain rows as a pandas DataFram
 """
 
 from importlib import import_module
-from typing import Any
 
 __version__ = "0.1.0"
 
@@ -42,7 +41,7 @@ _LAZY = {
 }
 
 
-def __getattr__(name: str) -> Any:
+def __getattr__(name: str) -> object:
     if name in _LAZY:
         return getattr(import_module(_LAZY[name]), name)
     raise AttributeError(f"module 'grainclass' has no attribute {name!r}")
