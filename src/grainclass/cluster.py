@@ -30,6 +30,19 @@ def require_dask() -> None:
         ) from None
 
 
+def _check_address(scheduler: str) -> None:
+    """Refuse an address that names no scheduler before a client tries to reach it: a client
+    that fails to start leaves threads that wait a minute to close."""
+    from distributed.comm import get_address_host_port
+
+    try:
+        _, port = get_address_host_port(scheduler)
+    except (ValueError, TypeError) as exc:
+        raise OptionError("scheduler", f"{scheduler!r} is no scheduler address: {exc}") from None
+    if not 0 < port < 2**16:
+        raise OptionError("scheduler", f"{scheduler!r}: port {port} is out of range 1-65535")
+
+
 @contextmanager
 def dask_client(scheduler: str | None = None, workers: int | None = None) -> Iterator[Client]:
     """A Dask client: of the cluster whose scheduler is at ``scheduler``, else of a new local
@@ -40,6 +53,7 @@ def dask_client(scheduler: str | None = None, workers: int | None = None) -> Ite
     from grainclass.parallel import available_cpus, interrupts_blocked
 
     if scheduler:
+        _check_address(scheduler)
         try:
             client = Client(scheduler, timeout=SCHEDULER_TIMEOUT)
         except (OSError, ValueError, TimeoutError) as exc:

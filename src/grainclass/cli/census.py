@@ -10,6 +10,23 @@ from grainclass.cli import errors, exit_codes, options, startup
 from grainclass.options import DEFAULT_CHUNK_SIZE, MAX_CHUNK_SIZE
 
 
+def _directory(ctx: click.Context, param: click.Parameter, value: str) -> str:
+    import os
+
+    options.nonempty_path(ctx, param, value)
+    if value == "-":
+        raise click.BadParameter("a census is written into a directory, not to standard output")
+    if os.path.exists(value) and not os.path.isdir(value):
+        raise click.BadParameter(f"{value!r} is not a directory")
+    return value
+
+
+def _address(ctx: click.Context, param: click.Parameter, value: str | None) -> str | None:
+    if value is not None and not value.strip():
+        raise click.BadParameter("an empty address names no scheduler")
+    return value
+
+
 @click.command("census", cls=errors.Command, epilog=exit_codes.CENSUS)
 @click.argument("n_values", nargs=-1, required=True, metavar="N...", callback=options.vertex_counts)
 @click.option(
@@ -17,8 +34,7 @@ from grainclass.options import DEFAULT_CHUNK_SIZE, MAX_CHUNK_SIZE
     "--output",
     required=True,
     metavar="DIR",
-    callback=options.nonempty_path,
-    type=click.Path(file_okay=False),
+    callback=_directory,
     help="Census directory: checkpoints, then the tables (Parquet and CSV) and provenance.json.",
 )
 @click.option(
@@ -31,6 +47,7 @@ from grainclass.options import DEFAULT_CHUNK_SIZE, MAX_CHUNK_SIZE
 @click.option(
     "--scheduler",
     metavar="ADDRESS",
+    callback=_address,
     help="Run on an existing Dask cluster (tcp://host:port) instead of a local one.",
 )
 @click.option(
@@ -46,7 +63,12 @@ from grainclass.options import DEFAULT_CHUNK_SIZE, MAX_CHUNK_SIZE
     show_default=True,
     help="Triangulations per batch inside a task.",
 )
-@click.option("--plantri", metavar="PATH", help="plantri binary (default: passagemath-plantri's).")
+@click.option(
+    "--plantri",
+    metavar="PATH",
+    callback=options.nonempty_path,
+    help="plantri binary (default: passagemath-plantri's).",
+)
 @click.option("-q", "--quiet", is_flag=True, help="Only the tables, the cross-checks and failures.")
 def census_cmd(
     n_values: list[int],

@@ -52,6 +52,7 @@ FLAGS = {
     "box": "--box",
     "radius_column": "--radius-column",
     "workers": "--workers",
+    "scheduler": "--scheduler",
 }
 
 
@@ -64,9 +65,12 @@ def key_value(ctx: click.Context, param: click.Parameter, value: str) -> tuple[s
 
 
 def nonempty_path(ctx: click.Context, param: click.Parameter, value: str | None) -> str | None:
-    """An output path given as an empty string names nothing (a shell variable unset, say)."""
+    """A path given as an empty string names nothing (a shell variable unset, say), and one
+    with a NUL byte nothing the system can open."""
     if value == "":
         raise click.BadParameter("an empty path names no file")
+    if value is not None and "\x00" in value:
+        raise click.BadParameter("a path holds no NUL byte")
     return value
 
 

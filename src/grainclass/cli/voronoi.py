@@ -49,6 +49,7 @@ def periodic_axes(ctx: click.Context, param: click.Parameter, value: str | None)
     "--points",
     "points_path",
     metavar="FILE",
+    callback=options.nonempty_path,
     help="Tessellate these points instead of N random seeds (formats: docs/formats.md).",
 )
 @click.option(
