@@ -78,10 +78,16 @@ def catch_stops() -> None:
 
 
 def all_done() -> None:
-    """From now on stop signals are let go: one would only end the shutdown in a traceback."""
+    """From now on stop signals are ignored: the command is done, its outputs whole, and the
+    interpreter, as it shuts down, gives back the signals it handles to the system, whose
+    default would end the process by the signal (a run that is done would seem stopped). No
+    process is started from here on, to inherit that."""
     global _stopping
     _stopping = True
     _done.set()
+    for name in _STOPS:
+        if hasattr(signal, name) and signal.getsignal(getattr(signal, name)) == stop:
+            signal.signal(getattr(signal, name), signal.SIG_IGN)
 
 
 def threads_busy() -> bool:
