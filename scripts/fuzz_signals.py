@@ -11,9 +11,10 @@ temporary), or a process of the group still alive 10 s after the run ended.
 
 A signal that comes while the Python interpreter itself starts, before any of grainclass runs,
 ends the process as Python ends it: by the signal (a shell reports 128 + N all the same), after
-Ctrl-C with Python's KeyboardInterrupt traceback, or while ``site`` loads with a fatal error and
-exit 1. Such runs are counted apart; one is a finding if its traceback shows a frame of
-grainclass past the loading of its entry point, or it left a file.
+Ctrl-C with Python's KeyboardInterrupt traceback, or while the interpreter initializes (its
+standard streams, ``site``) with a fatal error and exit 1. Such runs are counted apart; one is
+a finding if its traceback shows a frame of grainclass past the loading of its entry point, or
+it left a file.
 """
 
 from __future__ import annotations
@@ -101,8 +102,9 @@ def _group_alive(pgid: int) -> bool:
 
 def _python_starting(code: int, signum: int, stderr: str) -> bool:
     """Whether a run ended as Python ends one stopped while it starts: by the signal, or (Ctrl-C
-    while ``site`` imports) exit 1 with a fatal error; no frame of grainclass in its traceback."""
-    by_python = code == -signum or (code == 1 and "Fatal Python error: init_import_site" in stderr)
+    while the interpreter initializes: its standard streams, ``site``) exit 1 with a fatal
+    error; no frame of grainclass in its traceback."""
+    by_python = code == -signum or (code == 1 and "Fatal Python error: init_" in stderr)
     return by_python and not RUNNING.search(stderr)
 
 
