@@ -233,3 +233,14 @@ def test_the_command_line_is_loaded_after_the_stops_are_caught():
     loaded = run.stdout
     assert "'click'" not in loaded
     assert "'typing'" not in loaded
+
+
+@pytest.mark.parametrize("times", ["1,inf", "nan,2", "1,-inf"])
+def test_time_steps_that_are_not_finite_are_refused_without_a_numpy_warning(tmp_path, times):
+    figure = tmp_path / "e.png"
+    steps = [EXAMPLES / "polytopes.txt", EXAMPLES / "plantri-10.pc"]
+    result = _run("plot", "evolution", *steps, "-o", figure, "--times", times)
+    assert result.exit_code == 2
+    assert "a time step is a finite number" in _one_error_line(result)
+    assert "Warning" not in result.stderr
+    assert not figure.exists()
