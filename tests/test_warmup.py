@@ -206,6 +206,27 @@ TWO_GON = [[1, 2], [0, 2, 3], [0, 3, 1], [1, 2]]  # face 0 has two neighbours
 EXTRA = [[1, 2, 3, 4, 5], [0, 4, 5, 2], [0, 1, 5, 3], [0, 2, 5, 4], [0, 3, 5, 1], [1, 4, 3, 2]]
 
 
+def _helper_that_listens(monkeypatch, warmup) -> list[bytes]:
+    """The helper process replaced by one that keeps what it is told (each plan, in order)."""
+    heard: list[bytes] = []
+
+    class Pipe(io.BytesIO):
+        def close(self) -> None:
+            if not self.closed:
+                heard.append(self.getvalue())
+            super().close()
+
+    class Helper:
+        def __init__(self, *args, **kwargs) -> None:
+            self.stdin = Pipe()
+
+        def wait(self, timeout=None) -> int:
+            return 0
+
+    monkeypatch.setattr(warmup.subprocess, "Popen", Helper)
+    return heard
+
+
 @pytest.mark.parametrize(
     ("grains", "told"),
     [
@@ -226,23 +247,8 @@ def test_the_first_batch_tells_the_helper_the_plan(monkeypatch, grains, told):
     import grainclass.warmup as warmup
     from grainclass.batch import GrainBatch
 
-    heard: list[bytes] = []
+    heard = _helper_that_listens(monkeypatch, warmup)
     validated_first: list[bool] = []
-
-    class Pipe(io.BytesIO):
-        def close(self) -> None:
-            if not self.closed:
-                heard.append(self.getvalue())
-            super().close()
-
-    class Helper:
-        def __init__(self, *args, **kwargs) -> None:
-            self.stdin = Pipe()
-
-        def wait(self, timeout=None) -> int:
-            return 0
-
-    monkeypatch.setattr(warmup.subprocess, "Popen", Helper)
     monkeypatch.setattr(warmup, "_validation_first", lambda: validated_first.append(True))
     lists = {"cube": warmup.CUBE, "prism": warmup.PRISM, "two-gon": TWO_GON, "extra": EXTRA}
     batches = [GrainBatch.from_lists([lists[name]]) for name in grains]
@@ -262,22 +268,7 @@ def test_the_plan_reaches_the_helper_once_whenever_it_starts(
     import grainclass.warmup as warmup
     from grainclass.batch import GrainBatch
 
-    heard: list[bytes] = []
-
-    class Pipe(io.BytesIO):
-        def close(self) -> None:
-            if not self.closed:
-                heard.append(self.getvalue())
-            super().close()
-
-    class Helper:
-        def __init__(self, *args, **kwargs) -> None:
-            self.stdin = Pipe()
-
-        def wait(self, timeout=None) -> int:
-            return 0
-
-    monkeypatch.setattr(warmup.subprocess, "Popen", Helper)
+    heard = _helper_that_listens(monkeypatch, warmup)
     with warmup.compiling_from_both_ends(jobs=2, types=True) as watch:
         if compiled_before_the_first_batch:
             compilation.kernel_compiling()
