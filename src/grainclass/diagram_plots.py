@@ -20,10 +20,12 @@ from grainclass.schlegel import Belt, Diagram, GrainDrawing, label_place
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
-    from matplotlib.figure import Figure, SubFigure
+    from matplotlib.figure import Figure
 
-PANEL = (2.6, 2.9)  # inches: a diagram and its title
+PANEL = (2.6, 2.95)  # inches: a diagram, and its title of up to three lines above it
+DIAGRAM = 2.45  # inches: the side of a diagram's square
 FOREST_WIDTH = 1.9  # inches beside a diagram for its truncation forest
+LEGEND = 0.35  # inches under the panels for the flips' legend
 LIMIT = 1.32  # the diagram's axes reach past the unit circle, for the outer face's label
 OUTER_BAND = 1.12  # the outer face, when filled, is the band out to this radius
 BELT = "#f2a5a5"
@@ -52,20 +54,21 @@ def draw_grains(
     """
     panels = [(d, belt, number) for d in drawings for belt, number in _belts_of(d)]
     forest = any(d.truncations is not None for d in drawings)
-    columns = columns or min(len(panels), 3 if forest else 4)
+    columns = min(columns or (3 if forest else 4), len(panels))
     rows = math.ceil(len(panels) / columns)
     width = PANEL[0] + (FOREST_WIDTH if forest else 0.0)
-    flips = any(d.flips is not None for d in drawings)
-    legend_height = 0.35 if flips else 0.0
+    legend = LEGEND if any(d.flips is not None for d in drawings) else 0.0
+    size = (columns * width, rows * PANEL[1] + legend)
     with pyplot_styled(STYLE) as plt:
-        fig = plt.figure(
-            figsize=(columns * width, rows * PANEL[1] + legend_height), layout="constrained"
-        )
+        # Every place is fixed in inches, never fitted to the text: a layout engine's
+        # iterations would make the same figure differ in the last digits from run to run.
+        fig = plt.figure(figsize=size)
         try:
-            cells = fig.subfigures(rows, columns, squeeze=False).ravel()
-            for cell, (drawing, belt, number) in zip(cells, panels, strict=False):
-                _panel(cell, drawing, belt, number, forest)
-            if flips:
+            for i, (drawing, belt, number) in enumerate(panels):
+                row, column = divmod(i, columns)
+                left, top = column * width, row * PANEL[1]
+                _panel(fig, size, (left, top), drawing, belt, number, forest)
+            if legend:
                 _flip_legend(fig)
             save_figure(fig, sink, fmt)
         finally:
@@ -81,19 +84,39 @@ def _belts_of(drawing: GrainDrawing) -> list[tuple[Belt | None, int]]:
 
 
 def _panel(
-    cell: SubFigure, drawing: GrainDrawing, belt: Belt | None, number: int, forest: bool
+    fig: Figure,
+    size: tuple[float, float],
+    corner: tuple[float, float],
+    drawing: GrainDrawing,
+    belt: Belt | None,
+    number: int,
+    forest: bool,
 ) -> None:
-    if forest:
-        ax, tree_ax = cell.subplots(1, 2, width_ratios=[PANEL[0], FOREST_WIDTH])
-    else:
-        ax, tree_ax = cell.subplots(), None
+    """A panel whose top left corner is ``corner`` inches from the figure's."""
+    left, top = corner
+
+    def axes(x: float, bottom: float, w: float, h: float) -> Axes:
+        """Axes ``w`` by ``h`` inches, ``x`` from the panel's left and ``bottom`` down from its
+        top."""
+        return fig.add_axes(
+            ((left + x) / size[0], 1 - (top + bottom) / size[1], w / size[0], h / size[1])
+        )
+
     lines = [drawing.title, drawing.caption]
     if drawing.belt_length is not None:
         lines.append(_belt_line(drawing, belt, number))
-    cell.suptitle("\n".join(lines), fontsize=8)
-    _diagram(ax, drawing, belt)
-    if tree_ax is not None:
-        _forest(tree_ax, drawing)
+    fig.text(
+        (left + PANEL[0] / 2) / size[0],
+        1 - (top + 0.08) / size[1],
+        "\n".join(lines),
+        ha="center",
+        va="top",
+        fontsize=8,
+    )
+    margin = (PANEL[0] - DIAGRAM) / 2
+    _diagram(axes(margin, PANEL[1] - 0.05, DIAGRAM, DIAGRAM), drawing, belt)
+    if forest:
+        _forest(axes(PANEL[0], PANEL[1] - 0.25, FOREST_WIDTH - 0.15, DIAGRAM - 0.3), drawing)
 
 
 def _belt_line(drawing: GrainDrawing, belt: Belt | None, number: int) -> str:
@@ -353,7 +376,7 @@ def _flip_legend(fig: Figure) -> None:
     fig.legend(
         handles,
         [FLIP_WORDS[k] for k in ("other", "same", "none")],
-        loc="outside lower center",
+        loc="lower center",
         ncols=3,
         frameon=False,
         handler_map={same: Zigzag()},

@@ -241,7 +241,7 @@ def _require_ok(row: dict) -> None:
     if row[schema.STATUS] != "ok":
         raise DataError(
             f"grain {row[schema.GRAIN_ID]} is {row[schema.STATUS]} ({row[schema.ERROR]}): "
-            "only a simple polytope, a grain whose status is ok, has a Schlegel diagram"
+            "only an ok grain, a simple polytope, has a Schlegel diagram"
         )
 
 
@@ -320,6 +320,11 @@ def _drawing(
     subject: _Subject, request: DrawingOptions, flips: dict[tuple[int, int], str] | None
 ) -> GrainDrawing:
     lists = subject.lists
+    if request.outer_face is not None and request.outer_face >= len(lists):
+        raise DataError(
+            f"grain {subject.grain_id} has {len(lists)} faces, 0 to {len(lists) - 1}: "
+            f"no face {request.outer_face} to put outside"
+        )
     d = diagram(lists, request.outer_face)
     flip_styles = None
     if flips is not None:

@@ -237,7 +237,9 @@ class DrawingOptions:
     def __post_init__(self) -> None:
         if not (self.ids or self.weinberg or self.named or self.gallery):
             raise OptionError(
-                "ids", "nothing to draw: name grains by id, Weinberg vector or name, or a top"
+                "ids",
+                "nothing to draw: choose grains by id, Weinberg vector or name, or the most "
+                "frequent types",
             )
         if self.top is not None:
             _require_int("top", self.top, 1, 2**63 - 1, "numbers of types")
