@@ -33,7 +33,12 @@ BELT_LINE = "#a4161a"
 DUAL = "#1f5fa8"
 DEPTHS = ("#c6dbef", "#9ecae1", "#6baed6", "#4292c6", "#2171b5", "#08519c", "#08306b")
 DARK_FROM = 4  # depths from this one on are dark enough for white labels
-STYLE = {"font.size": 8, "savefig.dpi": 150, "lines.solid_capstyle": "round"}
+STYLE = {
+    "font.size": 8,
+    "savefig.dpi": 150,
+    "lines.solid_capstyle": "round",
+    "svg.fonttype": "none",
+}
 FLIP_WORDS = {
     "other": "flip gives another type",
     "same": "flip gives the same type",
@@ -176,22 +181,28 @@ def _diagram(ax: Axes, drawing: GrainDrawing, belt: Belt | None) -> None:
 
 
 def _edges(ax: Axes, drawing: GrainDrawing) -> None:
-    from matplotlib.collections import LineCollection
-
     d = drawing.diagram
     styles = drawing.flips or ("plain",) * len(d.edges)
-    segments: dict[str, list[np.ndarray]] = {}
+    lines: dict[str, list[np.ndarray]] = {}
     for (a, b, _, _), style in zip(d.edges.tolist(), styles, strict=True):
         segment = d.positions[[a, b]]
-        segments.setdefault(style, []).append(_zigzag(segment) if style == "same" else segment)
+        lines.setdefault(style, []).append(_zigzag(segment) if style == "same" else segment)
     looks = {
-        "plain": {"linewidths": 1.0},
-        "other": {"linewidths": 2.6},
-        "same": {"linewidths": 0.9},
-        "none": {"linewidths": 1.0, "linestyles": (0, (3.0, 2.0))},
+        "plain": {"linewidth": 1.0},
+        "other": {"linewidth": 2.6},
+        "same": {"linewidth": 0.9},
+        "none": {"linewidth": 1.0, "linestyle": (0, (3.0, 2.0))},
     }
-    for style, lines in segments.items():
-        ax.add_collection(LineCollection(lines, colors="black", **looks[style]))
+    for style, parts in lines.items():
+        _polylines(ax, parts, color="black", **looks[style])
+
+
+def _polylines(ax: Axes, parts: list[np.ndarray], **style: object) -> None:
+    """Lines drawn as one path, each part apart from the next (a file holds one element,
+    not one per edge)."""
+    gap = np.full((1, 2), np.nan)
+    joined = np.vstack([row for part in parts for row in (part, gap)])
+    ax.plot(*joined.T, **style)
 
 
 def _zigzag(segment: np.ndarray, teeth_per_unit: float = 16.0) -> np.ndarray:
@@ -213,15 +224,13 @@ def _dual(ax: Axes, drawing: GrainDrawing) -> None:
     """The dual graph: a vertex in each inner face, an edge through the middle of each edge;
     the outer face's vertex, out at infinity, is not drawn (as the paper leaves out the back
     face's), its edges leave the drawing."""
-    from matplotlib.collections import LineCollection
-
     d = drawing.diagram
     paths = []
     for a, b, f, g in d.edges.tolist():
         middle = d.positions[[a, b]].mean(axis=0)
         ends = [_dual_end(d, f, middle), middle, _dual_end(d, g, middle)]
         paths.append(np.array(ends))
-    ax.add_collection(LineCollection(paths, colors=DUAL, linewidths=0.8, zorder=3))
+    _polylines(ax, paths, color=DUAL, linewidth=0.8, zorder=3)
     inner = [f for f in range(d.n_faces) if f != d.outer_face]
     centres = np.array([d.centre(f) for f in inner])
     ax.plot(
