@@ -134,14 +134,40 @@ def structure(lists: Lists) -> tuple[np.ndarray, tuple[tuple[int, ...], ...], np
 
 
 def largest_face(lists: Lists) -> int:
-    """The face with the most sides (the first of them): the default outer face."""
+    """The default outer face: one with the most sides, and of those the one whose farthest
+    face is fewest steps away in the dual graph (the first such): the diagram nests as many
+    rings of faces inside the outer face as that distance, and the fewer, the less crowded
+    its middle.
+
+    >>> cube_truncated = [[1, 2, 3], [0, 3, 4, 5, 2], [0, 1, 5, 6, 3], [0, 2, 6, 4, 1],
+    ...                   [1, 3, 6, 5], [1, 4, 6, 2], [2, 5, 4, 3]]
+    >>> largest_face(cube_truncated)
+    1
+    """
     sizes = [len(nbrs) for nbrs in lists]
-    return sizes.index(max(sizes))
+    most = max(sizes)
+    candidates = [f for f, size in enumerate(sizes) if size == most]
+    return min(candidates, key=lambda f: (_eccentricity(lists, f), f))
+
+
+def _eccentricity(lists: Lists, face: int) -> int:
+    """Steps from ``face`` to the farthest face in the dual graph."""
+    distance = {face: 0}
+    frontier = [face]
+    while frontier:
+        following = []
+        for f in frontier:
+            for g in lists[f]:
+                if g not in distance:
+                    distance[g] = distance[f] + 1
+                    following.append(g)
+        frontier = following
+    return max(distance.values())
 
 
 def diagram(lists: Lists, outer_face: int | None = None) -> Diagram:
-    """The Schlegel diagram of an ok grain with ``outer_face`` (default: its largest face) as
-    the outer boundary.
+    """The Schlegel diagram of an ok grain with ``outer_face`` (default:
+    :func:`largest_face`) as the outer boundary.
 
     Raises
     ------
