@@ -78,6 +78,9 @@ class ReadOptions:
         out by default: their faces there are cuts, not grain boundaries).
     jobs : int or None
         Threads for the compiled kernels; None: every CPU this process may use.
+    geometry : bool
+        Keep each grain's corner positions and surface polygons (``GrainBatch.shapes``) where
+        the input has them (Surface Evolver, Neper), to draw the grain in space.
 
     Examples
     --------
@@ -96,6 +99,7 @@ class ReadOptions:
     belt_length: int | None = None
     include_boundary: bool = False
     jobs: int | None = None
+    geometry: bool = False
 
     def __post_init__(self) -> None:
         if self.input_format is not None:
@@ -215,8 +219,9 @@ class DrawingOptions:
     ``ids`` with ``trees``, else ``sides``); ``dual``, the dual graph; ``belt_length``, every
     belt of that length (3 to 10; for 3 the non-trivial ones), one panel each, or only the
     ``belt``-th of them (from 1); ``flips``, each edge styled by what its flip gives;
-    ``trees``, the faces reverse truncations remove, by depth, and the truncation forest.
-    ``columns``: panels in a row.
+    ``trees``, the faces reverse truncations remove, by depth, and the truncation forest;
+    ``solid``, the grain in space beside its diagram, from its input's corner positions (grains
+    by id only). ``columns``: panels in a row.
     """
 
     ids: tuple[str, ...] = ()
@@ -232,6 +237,7 @@ class DrawingOptions:
     belt: int | None = None
     flips: bool = False
     trees: bool = False
+    solid: bool = False
     columns: int | None = None
 
     def __post_init__(self) -> None:
@@ -261,6 +267,12 @@ class DrawingOptions:
             _require_int("belt", self.belt, 1, 2**31 - 1, "belt numbers")
         if self.columns is not None:
             _require_int("columns", self.columns, 1, 1000, "columns")
+        if self.solid and (self.weinberg or self.named or self.gallery):
+            raise OptionError(
+                "solid",
+                "a grain is drawn in space from its input's corner positions: only grains "
+                "chosen by id have them",
+            )
 
     @property
     def gallery(self) -> bool:
