@@ -37,6 +37,8 @@ from grainclass.perturb import check
 pytest.importorskip("matplotlib")
 
 VORO = ROOT / "tests" / "data" / "voro" / "periodic-300.vol"
+NEPER_CUBE = ROOT / "tests" / "data" / "neper" / "cube.tess"
+GRAIN3D = ROOT / "tests" / "data" / "evolver" / "grain3d"
 # Cells of the periodic Voronoi tessellation, of 11 to 20 faces.
 CELLS = ("13", "201", "2", "7", "40")
 NAMED = ("tetrahedron", "triangular-prism", "cube", "flipped-cube", "smallest-sc")
@@ -416,6 +418,100 @@ def test_gallery_is_the_most_frequent_types_counted_here(tmp_path):
     assert {e["weinberg"]: e["count"] for e in drawn} == dict(counts)
 
 
+def _directed_sides(polygons) -> collections.Counter:
+    return collections.Counter(
+        (a, b)
+        for polygon in polygons
+        for a, b in zip(polygon, polygon[1:] + polygon[:1], strict=True)
+    )
+
+
+def _enclosed_volume(points, polygons) -> float:
+    """The volume a closed surface of polygons encloses, positive when they turn
+    counter-clockwise seen from outside (the divergence theorem, over fans of triangles)."""
+    return sum(
+        float(np.dot(points[p[0]], np.cross(points[p[i]], points[p[i + 1]]))) / 6
+        for p in polygons
+        for i in range(1, len(p) - 1)
+    )
+
+
+def _tess_faces(path) -> dict[str, set[tuple[float, ...]]]:
+    """Each face of a Neper file by its id, as the set of its vertices' coordinates, read
+    here: a **vertex line is an id and x y z; a **face entry's first line is its id, its
+    number of vertices and their ids."""
+    lines = [line.split() for line in path.read_text().splitlines()]
+    at = {line[0]: i for i, line in enumerate(lines) if line and line[0].startswith("**")}
+    start = at["**vertex"]
+    coords = {
+        words[0]: tuple(float(x) for x in words[1:4])
+        for words in lines[start + 2 : start + 2 + int(lines[start + 1][0])]
+    }
+    start = at["**face"]
+    faces = {}
+    for k in range(int(lines[start + 1][0])):
+        words = lines[start + 2 + 4 * k]
+        faces[words[0]] = {coords[v] for v in words[2 : 2 + int(words[1])]}
+    return faces
+
+
+def test_a_neper_cell_in_space_is_its_file_face_for_face(tmp_path):
+    (entry,) = _data(tmp_path, NEPER_CUBE, "--id", "1", "--3d")
+    shape = entry["shape"]
+    points = np.array(shape["positions"])
+    polygons = shape["polygons"]
+    # Each face's polygon has the corners the file gives the face of that id.
+    faces = _tess_faces(NEPER_CUBE)
+    for polygon, face in zip(polygons, shape["polygon_faces"], strict=True):
+        corners = {tuple(points[c].tolist()) for c in polygon}
+        assert corners == faces[entry["face_ids"][face]]
+    # A closed surface turning one way, outwards: the unit cube.
+    sides = _directed_sides(polygons)
+    assert set(sides.values()) == {1}
+    assert all((b, a) in sides for a, b in sides)
+    assert _enclosed_volume(points, polygons) == pytest.approx(1.0)
+
+
+def _fe_vertices(path) -> np.ndarray:
+    """The vertices section of a Surface Evolver file, read here."""
+    rows, inside = [], False
+    for line in path.read_text().splitlines():
+        words = line.split()
+        if words[:1] == ["vertices"]:
+            inside = True
+        elif inside and words and words[0].isdigit():
+            rows.append([float(x) for x in words[1:4]])
+        elif inside and words:
+            break
+    return np.array(rows)
+
+
+def test_evolver_grains_in_space_are_their_files_closed_surfaces(tmp_path):
+    ids = ["21000-00000006", "21000-00000014", "21000-00000030"]
+    drawn = _data(tmp_path, GRAIN3D, *itertools.chain(*(("--id", i) for i in ids)), "--3d")
+    volumes = pq.read_table(_classified(tmp_path, GRAIN3D)).to_pandas().set_index("grain_id")
+    for entry in drawn:
+        points = np.array(entry["shape"]["positions"])
+        polygons = entry["shape"]["polygons"]
+        # Every corner is one of the file's, moved by whole periods of the unit box.
+        vertices = _fe_vertices(GRAIN3D / f"{entry['grain_id']}.fe")
+        for point in points:
+            shifts = point - vertices
+            assert np.any(np.all(np.abs(shifts - np.round(shifts)) < 1e-9, axis=1))
+        # A closed surface turning one way, outwards, enclosing the grain's volume.
+        sides = _directed_sides(polygons)
+        assert set(sides.values()) == {1}
+        assert all((b, a) in sides for a, b in sides)
+        volume = _enclosed_volume(points, polygons)
+        assert volume == pytest.approx(volumes.loc[entry["grain_id"], "volume"], rel=1e-9)
+
+
+def _classified(tmp_path, path):
+    table = tmp_path / f"{path.name}.parquet"
+    assert _run("classify", path, "-o", table, "-q").exit_code == 0
+    return table
+
+
 def test_the_same_input_gives_the_same_svg_bytes(tmp_path):
     args = ["--named", "A", "--named", "smallest-sc", "--dual", "--flips", "--trees"]
     args += ["--belt-length", "4"]
@@ -442,6 +538,7 @@ def test_other_formats(tmp_path, fmt):
         (["polytopes.txt", "--id", "cube", "--outer-face", "6"], "has 6 faces, 0 to 5"),
         (["--named", "cube", "--belt-length", "4", "--belt", "4"], "has 3 belts of 4 faces"),
         (["g.parquet", "--id", "cube"], "has no Weinberg vector"),
+        (["polytopes.txt", "--id", "cube", "--3d"], "has no corner positions"),
     ],
 )
 def test_bad_input_exits_1_and_writes_nothing(tmp_path, args, message):
@@ -472,6 +569,7 @@ def test_bad_input_exits_1_and_writes_nothing(tmp_path, args, message):
         ["x.txt", "--named", "cube", "-o", "f.svg"],  # an input, but no grain of it chosen
         ["--id", "1", "-o", "f.svg"],  # an id, but no input
         ["--named", "octahedron", "-o", "f.svg"],
+        ["--named", "cube", "--3d", "-o", "f.svg"],  # no corner positions to draw it from
     ],
 )
 def test_usage_errors_exit_2(tmp_path, args):

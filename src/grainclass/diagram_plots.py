@@ -25,6 +25,10 @@ if TYPE_CHECKING:
 PANEL = (2.6, 2.95)  # inches: a diagram, and its title of up to three lines above it
 DIAGRAM = 2.45  # inches: the side of a diagram's square
 FOREST_WIDTH = 1.9  # inches beside a diagram for its truncation forest
+SOLID_WIDTH = 2.6  # inches beside a diagram (and forest) for the grain in space
+VIEW = (20.0, -60.0)  # elevation and azimuth, in degrees, the grain in space is seen from
+LIGHT = np.array([-0.4, -0.5, 0.77])  # towards the light, from above the viewer's left
+SOLID = "#d9dee6"
 LEGEND = 0.35  # inches under the panels for the flips' legend
 LIMIT = 1.32  # the diagram's axes reach past the unit circle, for the outer face's label
 OUTER_BAND = 1.12  # the outer face, when filled, is the band out to this radius
@@ -59,9 +63,10 @@ def draw_grains(
     """
     panels = [(d, belt, number) for d in drawings for belt, number in _belts_of(d)]
     forest = any(d.truncations is not None for d in drawings)
-    columns = min(columns or (3 if forest else 4), len(panels))
+    solid = any(d.shape is not None for d in drawings)
+    columns = min(columns or (2 if forest and solid else 3 if forest or solid else 4), len(panels))
     rows = math.ceil(len(panels) / columns)
-    width = PANEL[0] + (FOREST_WIDTH if forest else 0.0)
+    width = PANEL[0] + (FOREST_WIDTH if forest else 0.0) + (SOLID_WIDTH if solid else 0.0)
     legend = LEGEND if any(d.flips is not None for d in drawings) else 0.0
     size = (columns * width, rows * PANEL[1] + legend)
     with pyplot_styled(STYLE) as plt:
@@ -72,7 +77,7 @@ def draw_grains(
             for i, (drawing, belt, number) in enumerate(panels):
                 row, column = divmod(i, columns)
                 left, top = column * width, row * PANEL[1]
-                _panel(fig, size, (left, top), drawing, belt, number, forest)
+                _panel(fig, size, (left, top), drawing, belt, number, forest, solid)
             if legend:
                 _flip_legend(fig)
             save_figure(fig, sink, fmt)
@@ -96,15 +101,17 @@ def _panel(
     belt: Belt | None,
     number: int,
     forest: bool,
+    solid: bool,
 ) -> None:
     """A panel whose top left corner is ``corner`` inches from the figure's."""
     left, top = corner
 
-    def axes(x: float, bottom: float, w: float, h: float) -> Axes:
+    def axes(x: float, bottom: float, w: float, h: float, **kind: str) -> Axes:
         """Axes ``w`` by ``h`` inches, ``x`` from the panel's left and ``bottom`` down from its
         top."""
         return fig.add_axes(
-            ((left + x) / size[0], 1 - (top + bottom) / size[1], w / size[0], h / size[1])
+            ((left + x) / size[0], 1 - (top + bottom) / size[1], w / size[0], h / size[1]),
+            **kind,
         )
 
     lines = [drawing.title, drawing.caption]
@@ -122,6 +129,9 @@ def _panel(
     _diagram(axes(margin, PANEL[1] - 0.05, DIAGRAM, DIAGRAM), drawing, belt)
     if forest:
         _forest(axes(PANEL[0], PANEL[1] - 0.25, FOREST_WIDTH - 0.15, DIAGRAM - 0.3), drawing)
+    if solid and drawing.shape is not None:
+        x = PANEL[0] + (FOREST_WIDTH if forest else 0.0)
+        _solid(axes(x, PANEL[1] - 0.05, DIAGRAM, DIAGRAM, projection="3d"), drawing, belt)
 
 
 def _belt_line(drawing: GrainDrawing, belt: Belt | None, number: int) -> str:
@@ -362,6 +372,73 @@ def _forest(ax: Axes, drawing: GrainDrawing) -> None:
     ax.set_ylim(-deepest - 0.6, -0.4)
     words = truncations.forest if truncations.forest is not None else "to the tetrahedron"
     ax.set_title(f"trees {words}", fontsize=7)
+
+
+def _solid(ax: Axes, drawing: GrainDrawing, belt: Belt | None) -> None:
+    """The grain in space, from its input's corner positions, lit from above left: its faces
+    filled as in the diagram, where the input says which face each polygon is, and labelled
+    where they face the viewer; Surface Evolver's facets, whose faces it does not say, grey."""
+    from mpl_toolkits.mplot3d.art3d import Poly3DCollection
+
+    shape = drawing.shape
+    if shape is None:
+        return
+    points = shape.positions - (shape.positions.max(axis=0) + shape.positions.min(axis=0)) / 2
+    polygons = [points[polygon] for polygon in shape.polygons]
+    normals = np.array([_normal(polygon) for polygon in polygons])
+    light = 0.55 + 0.45 * np.clip(normals @ (LIGHT / np.linalg.norm(LIGHT)), -1.0, 1.0)
+    colours = _face_colours(drawing, belt)
+    faces = shape.face
+    base = [
+        colours[faces[i]] if faces is not None and colours[faces[i]] is not None else SOLID
+        for i in range(len(polygons))
+    ]
+    from matplotlib.colors import to_rgb
+
+    fill = [tuple(min(1.0, c * k) for c in to_rgb(b)) for b, k in zip(base, light, strict=True)]
+    ax.add_collection3d(
+        Poly3DCollection(
+            polygons,
+            facecolors=fill,
+            edgecolors="black" if faces is not None else fill,
+            linewidths=0.6 if faces is not None else 0.2,
+        )
+    )
+    reach = float(np.abs(points).max())
+    ax.set_xlim(-reach, reach)
+    ax.set_ylim(-reach, reach)
+    ax.set_zlim(-reach, reach)
+    ax.set_box_aspect((1, 1, 1))
+    ax.view_init(elev=VIEW[0], azim=VIEW[1])
+    ax.set_axis_off()
+    if faces is None or drawing.labels == "none":
+        return
+    elevation, azimuth = np.radians(VIEW)
+    towards_viewer = np.array(
+        [
+            np.cos(elevation) * np.cos(azimuth),
+            np.cos(elevation) * np.sin(azimuth),
+            np.sin(elevation),
+        ]
+    )
+    for i, polygon in enumerate(polygons):
+        if normals[i] @ towards_viewer > 0.2:
+            x, y, z = polygon.mean(axis=0) + 0.02 * reach * normals[i]
+            ax.text(x, y, z, drawing.label(int(faces[i])), ha="center", va="center", fontsize=6)
+
+
+def _normal(polygon: np.ndarray) -> np.ndarray:
+    """The unit normal of a polygon turning counter-clockwise seen from its front (Newell's)."""
+    following = np.roll(polygon, -1, axis=0)
+    normal = np.array(
+        [
+            np.sum((polygon[:, 1] - following[:, 1]) * (polygon[:, 2] + following[:, 2])),
+            np.sum((polygon[:, 2] - following[:, 2]) * (polygon[:, 0] + following[:, 0])),
+            np.sum((polygon[:, 0] - following[:, 0]) * (polygon[:, 1] + following[:, 1])),
+        ]
+    )
+    length = np.linalg.norm(normal)
+    return normal / length if length > 0 else normal
 
 
 def _flip_legend(fig: Figure) -> None:

@@ -21,8 +21,8 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from grainclass import schema
-from grainclass.batch import GrainBatch, offsets_from_counts, run_indices
+from grainclass import interrupts, schema
+from grainclass.batch import GrainBatch, Shape, offsets_from_counts, run_indices
 from grainclass.errors import DataError, OptionError, Remedy
 from grainclass.options import DrawingOptions, ReadOptions
 from grainclass.schlegel import Belt, GrainDrawing, Truncations, belts, diagram
@@ -54,6 +54,7 @@ class _Subject:
     face_ids: tuple[str, ...]
     fields: dict = field(default_factory=dict)
     caption: str = ""
+    shape: Shape | None = None
 
 
 def grain_drawings(
@@ -93,7 +94,7 @@ def grain_drawings(
     >>> cube.caption, sorted(set(cube.flips))
     ('6 faces (0,6) flag 1:1', ['other'])
     """
-    options = options or ReadOptions()
+    options = ReadOptions.of(options, geometry=request.solid)
     needs_inputs = bool(request.ids) or request.gallery
     if paths and not needs_inputs:
         raise OptionError("ids", "inputs given, but no grain of them chosen (by id or top)")
@@ -104,6 +105,13 @@ def grain_drawings(
             raise OptionError("named", f"no grain named {name!r}: one of {', '.join(NAMED_GRAINS)}")
     codes = [parse_weinberg(code) for code in request.weinberg]
     subjects = _by_id(paths, request.ids, options, watch) if request.ids else []
+    if request.solid:
+        for subject in subjects:
+            if subject.shape is None:
+                raise DataError(
+                    f"grain {subject.grain_id}: {subject.fields['source']} has no corner "
+                    "positions to draw it in space (Surface Evolver and Neper inputs have them)"
+                )
     built = [
         *[(_shortened(code), grain_from_weinberg(code), {}) for code in codes],
         *[
@@ -114,7 +122,11 @@ def grain_drawings(
     if request.gallery:
         built += _most_frequent(paths, request, options, watch)
     subjects += _classified(built)
-    return [_drawing(subject, request, flip) for subject, flip in _with_flips(subjects, request)]
+    drawings = []
+    for subject, flips in _with_flips(subjects, request):
+        interrupts.checkpoint()  # a stop asked for is taken between grains
+        drawings.append(_drawing(subject, request, flips))
+    return drawings
 
 
 def _shortened(code: Sequence[int]) -> str:
@@ -211,7 +223,8 @@ def _grains_at(batch: GrainBatch, positions: list[int]) -> dict[str, _Subject]:
             face_ids = _positions(len(lists))
         grain_id = row[schema.GRAIN_ID]
         fields = {"source": row[schema.SOURCE], "weinberg": row[schema.WEINBERG]}
-        subjects[grain_id] = _Subject(grain_id, grain_id, lists, row, face_ids, fields)
+        shape = None if picked.shapes is None else picked.shapes[g]
+        subjects[grain_id] = _Subject(grain_id, grain_id, lists, row, face_ids, fields, "", shape)
     return subjects
 
 
@@ -234,6 +247,7 @@ def _pick(batch: GrainBatch, positions: list[int]) -> GrainBatch:
         neighbors=batch.neighbors[run_indices(batch.nbr_offsets[faces], degrees)],
         parse_errors={where[p]: m for p, m in batch.parse_errors.items() if p in where},
         face_labels=None if batch.face_labels is None else batch.face_labels[faces],
+        shapes=None if batch.shapes is None else [batch.shapes[p] for p in positions],
     )
 
 
@@ -359,6 +373,7 @@ def _drawing(
         belt_numbers=numbers,
         belt_count=count,
         truncations=truncations,
+        shape=subject.shape if request.solid else None,
         fields=subject.fields | _classification_fields(subject.row),
     )
 

@@ -29,6 +29,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from grainclass.batch import Shape
 from grainclass.errors import DataError
 
 Lists = Sequence[Sequence[int]]
@@ -354,9 +355,9 @@ class GrainDrawing:
     each edge of ``diagram.edges`` what its flip gives
     (:data:`grainclass.vocabulary.FLIP_RESULTS`), ``belts`` the belts drawn, one panel each,
     ``belt_numbers`` their numbers among the grain's ``belt_count`` belts of ``belt_length``
-    faces, from 1; ``truncations`` the faces reverse truncations remove. ``fields`` is what
-    the drawing's data says of the grain besides (source, Weinberg vector, p-vector, class,
-    split type, count, ...).
+    faces, from 1; ``truncations`` the faces reverse truncations remove; ``shape`` the grain
+    in space. ``fields`` is what the drawing's data says of the grain besides (source,
+    Weinberg vector, p-vector, class, split type, count, ...).
     """
 
     grain_id: str
@@ -372,6 +373,7 @@ class GrainDrawing:
     belt_numbers: tuple[int, ...] = ()
     belt_count: int = 0
     truncations: Truncations | None = None
+    shape: Shape | None = None
     fields: dict = field(default_factory=dict)
 
     def label(self, face: int) -> str:
@@ -418,6 +420,13 @@ def drawing_data(drawings: Sequence[GrainDrawing]) -> dict:
             entry["truncation_depth"] = list(drawing.truncations.depth)
             entry["truncation_parent"] = list(drawing.truncations.parent)
             entry["trees"] = drawing.truncations.forest
+        if drawing.shape is not None:
+            shape = drawing.shape
+            entry["shape"] = {
+                "positions": shape.positions.tolist(),
+                "polygons": [polygon.tolist() for polygon in shape.polygons],
+                "polygon_faces": None if shape.face is None else shape.face.tolist(),
+            }
         grains.append(entry)
     return {"grains": grains}
 

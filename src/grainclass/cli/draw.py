@@ -90,6 +90,13 @@ MAX_INDEX = 2**31 - 1
     is_flag=True,
     help="Shade the faces reverse truncations remove by depth, and draw the truncation forest.",
 )
+@click.option(
+    "--3d",
+    "solid",
+    is_flag=True,
+    help="Draw each grain in space beside its diagram, from its input's corner positions "
+    "(Surface Evolver, Neper; grains chosen by --id).",
+)
 @click.option("--columns", type=click.IntRange(1, 1000), help="Panels in a row (default: 4).")
 @click.option(
     "--data",
@@ -114,6 +121,7 @@ def draw_cmd(
     belt: int | None,
     flips: bool,
     trees: bool,
+    solid: bool,
     columns: int | None,
     data: str | None,
     reading: ReadOptions,
@@ -144,6 +152,7 @@ def draw_cmd(
         belt=belt,
         flips=flips,
         trees=trees,
+        solid=solid,
         columns=columns,
     )
     if inputs:

@@ -61,6 +61,7 @@ FLAGS = {
     "face_label": "--labels",
     "belt": "--belt",
     "columns": "--columns",
+    "solid": "--3d",
 }
 
 
