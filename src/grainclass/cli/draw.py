@@ -49,15 +49,23 @@ MAX_INDEX = 2**31 - 1
     metavar="K",
     help="The K most frequent types of the inputs, as types counts them.",
 )
-@options.faces("With --top: types with N faces only.", multiple=False, name="n_faces")
+@options.faces(
+    "The most frequent types with N faces (with --top, the K first; alone, all).",
+    multiple=False,
+    name="n_faces",
+)
 @click.option(
-    "--class", "class_name", type=click.Choice(CLASSES), help="With --top: types of this class."
+    "--class",
+    "class_name",
+    type=click.Choice(CLASSES),
+    help="The most frequent types of this class (with --top, the K first; alone, all).",
 )
 @click.option(
     "--outer-face",
     type=click.IntRange(0, MAX_INDEX),
     metavar="F",
-    help="The face (0-based, in the input's order) that bounds the diagram (default: the largest).",
+    help="The face (0-based, in the input's order) that bounds the diagram (default: a largest "
+    "one, the one whose farthest face is nearest).",
 )
 @click.option(
     "--labels",
@@ -97,7 +105,12 @@ MAX_INDEX = 2**31 - 1
     help="Draw each grain in space beside its diagram, from its input's corner positions "
     "(Surface Evolver, Neper; grains chosen by --id).",
 )
-@click.option("--columns", type=click.IntRange(1, 1000), help="Panels in a row (default: 4).")
+@click.option(
+    "--columns",
+    type=click.IntRange(1, 1000),
+    metavar="C",
+    help="Panels in a row (default: 4; 3 with --trees or --3d, 2 with both).",
+)
 @click.option(
     "--data",
     metavar="JSON",
