@@ -55,10 +55,11 @@ demo: voro install
 	$(BIN)/grainclass perturb examples/polytopes.txt --flips 1 --seed 1 -q > /dev/null
 	$(BIN)/grainclass voronoi 200 --seed 1 -o build/demo-voronoi.parquet -q
 	$(BIN)/grainclass voronoi 200 --seed 1 -o build/demo-voronoi.txt -q
+	$(BIN)/grainclass draw build/demo-voronoi.txt --top 4 --flips --trees -o build/demo-draw.svg -q
 
 # Every kind of `grainclass plot` for a fresh Poisson-Voronoi data set (edge-errors: perturbed
 # with seed 1), and the evolution kind for the bundled grain-growth grains, into build/figures/
-# (PNG, and the numbers drawn as CSV).
+# (PNG, and the numbers drawn as CSV); and the data set's 12 most frequent types, drawn.
 figures: voro install
 	@mkdir -p build/figures
 	$(BIN)/grainclass voronoi $(FIGURE_SEEDS) --seed 1 -o build/figures/pv.txt -q
@@ -72,6 +73,8 @@ figures: voro install
 	$(BIN)/grainclass plot evolution $(GRAIN_GROWTH) --times 21000 --label grain-growth -q \
 		--series flag --series triangles --series tetrahedron --series cube --series 0:m \
 		-o build/figures/evolution.png --data build/figures/evolution.csv
+	$(BIN)/grainclass draw build/figures/pv.parquet --top 12 -q \
+		-o build/figures/types.svg --data build/figures/types.json
 	@ls -l build/figures
 
 # Voro++: its library and headers, which grainclass._voro is built against, and the voro++

@@ -64,6 +64,11 @@ COMMANDS = [
         ["plot", "round", "{data}/cells.parquet", "-o", "out.png", "--data", "out.csv"],
         ["out.png", "out.csv"],
     ),
+    Command(
+        "draw",
+        ["draw", "{data}/cells.txt", "--top", "12", "--flips", "-o", "out.svg", "--data", "o.json"],
+        ["out.svg", "o.json"],
+    ),
     Command("voronoi", ["voronoi", "20000", "--seed", "2", "-o", "out.txt"], ["out.txt"]),
     Command(
         "census",

@@ -37,6 +37,28 @@ def no_body_has(volume: float, area: float) -> bool:
 
 
 @dataclass(frozen=True)
+class Shape:
+    """A grain in space, as an input with corner positions gives it.
+
+    Attributes
+    ----------
+    positions : numpy.ndarray of float64, shape (V, 3)
+        Its corners (a grain across a periodic box unwrapped, in one piece).
+    polygons : tuple of numpy.ndarray of int64
+        Its surface: polygons of rows of ``positions``, turning as the input gives them
+        (counter-clockwise seen from outside, for a body listed as the formats say); a whole
+        face each, or a patch of one (Surface Evolver's facets).
+    face : numpy.ndarray of int64, shape (P,), optional
+        The face each polygon is (0-based, in the grain's face order); None where the input
+        does not say which face a patch belongs to.
+    """
+
+    positions: np.ndarray
+    polygons: tuple[np.ndarray, ...]
+    face: np.ndarray | None = None
+
+
+@dataclass(frozen=True)
 class GrainBatch:
     """Grains from one input, as CSR arrays of face adjacencies.
 
@@ -68,6 +90,10 @@ class GrainBatch:
     face_labels : numpy.ndarray of int64, shape (F,), optional
         The input's own id of each face (Neper's face ids), by which messages name faces;
         without them a face is named by its 0-based position in its grain.
+    shapes : list of (Shape or None), optional
+        Each grain in space, read only when asked for (``ReadOptions.geometry``) and only
+        where the input has corner positions (Surface Evolver, Neper); None for a grain that
+        could not be read.
     """
 
     source: str | list[str]
@@ -83,6 +109,7 @@ class GrainBatch:
     parse_errors: dict[int, str] = field(default_factory=dict)
     attributes: dict[str, list[str | None]] = field(default_factory=dict)
     face_labels: np.ndarray | None = None
+    shapes: list[Shape | None] | None = None
 
     def __post_init__(self) -> None:
         # Coerce once at the boundary so that the kernels see one layout only.
@@ -113,6 +140,8 @@ class GrainBatch:
             object.__setattr__(self, "face_labels", labels)
             if labels.shape != (self.face_offsets[-1],):
                 raise OptionError("face_labels", "face_labels needs one entry per face")
+        if self.shapes is not None and len(self.shapes) != g:
+            raise OptionError("shapes", "shapes needs one entry per grain")
 
     def __len__(self) -> int:
         return len(self.grain_id)

@@ -17,6 +17,7 @@ from typing import Any
 from grainclass.errors import OptionError
 from grainclass.vocabulary import (
     CLASSES,
+    FACE_LABELS,
     INPUT_FORMATS,
     NAMED_SERIES,
     OUTPUT_FORMATS,
@@ -36,6 +37,10 @@ DEFAULT_TRIPLE_EDGES = ("color", "red")
 SHORTEST_BELT, LONGEST_BELT = 4, 10
 """The belt lengths a reading may ask for: 4-belts are the paper's; beyond 10 the counts grow
 past what a per-grain list is for."""
+
+SHORTEST_DRAWN_BELT = 3
+"""A drawing shows 3-belts too: the non-trivial one of a severely constricted grain is what
+the paper draws it for (fig. smallest_nonflag)."""
 
 TABLE_EXTENSIONS = {
     ".txt": "text",
@@ -73,6 +78,9 @@ class ReadOptions:
         out by default: their faces there are cuts, not grain boundaries).
     jobs : int or None
         Threads for the compiled kernels; None: every CPU this process may use.
+    geometry : bool
+        Keep each grain's corner positions and surface polygons (``GrainBatch.shapes``) where
+        the input has them (Surface Evolver, Neper), to draw the grain in space.
 
     Examples
     --------
@@ -91,6 +99,7 @@ class ReadOptions:
     belt_length: int | None = None
     include_boundary: bool = False
     jobs: int | None = None
+    geometry: bool = False
 
     def __post_init__(self) -> None:
         if self.input_format is not None:
@@ -194,6 +203,86 @@ class FigureOptions:
             require_choice("series", series, (*CLASSES, *NAMED_SERIES), "series")
         if self.steps is not None and not all(map(_finite, self.steps)):
             raise OptionError("steps", "a time step is a finite number")
+
+
+@dataclass(frozen=True)
+class DrawingOptions:
+    """Which grains ``grainclass draw`` draws and what it draws on them.
+
+    Grains: ``ids`` (grains of the inputs, by id), ``weinberg`` (Weinberg vectors),
+    ``named`` (names of :data:`grainclass.weinberg_grains.NAMED_GRAINS`), and a data set's
+    most frequent types: ``top`` of them, among those with ``n_faces`` faces and of class
+    ``class_name`` where given (either alone chooses every such type).
+
+    On each: ``outer_face``, the face that bounds the diagram (0-based; None: the largest);
+    ``face_label``, what each face shows (:data:`grainclass.vocabulary.FACE_LABELS`; None:
+    ``ids`` with ``trees``, else ``sides``); ``dual``, the dual graph; ``belt_length``, every
+    belt of that length (3 to 10; for 3 the non-trivial ones), one panel each, or only the
+    ``belt``-th of them (from 1); ``flips``, each edge styled by what its flip gives;
+    ``trees``, the faces reverse truncations remove, by depth, and the truncation forest;
+    ``solid``, the grain in space beside its diagram, from its input's corner positions (grains
+    by id only). ``columns``: panels in a row.
+    """
+
+    ids: tuple[str, ...] = ()
+    weinberg: tuple[str, ...] = ()
+    named: tuple[str, ...] = ()
+    top: int | None = None
+    n_faces: int | None = None
+    class_name: str | None = None
+    outer_face: int | None = None
+    face_label: str | None = None
+    dual: bool = False
+    belt_length: int | None = None
+    belt: int | None = None
+    flips: bool = False
+    trees: bool = False
+    solid: bool = False
+    columns: int | None = None
+
+    def __post_init__(self) -> None:
+        if not (self.ids or self.weinberg or self.named or self.gallery):
+            raise OptionError(
+                "ids",
+                "nothing to draw: choose grains by id, Weinberg vector or name, or the most "
+                "frequent types",
+            )
+        if self.top is not None:
+            _require_int("top", self.top, 1, 2**63 - 1, "numbers of types")
+        if self.n_faces is not None:
+            _require_int("n_faces", self.n_faces, 4, 2**31 - 1, "numbers of faces")
+        if self.class_name is not None:
+            require_choice("class_name", self.class_name, CLASSES, "class")
+        if self.outer_face is not None:
+            _require_int("outer_face", self.outer_face, 0, 2**31 - 1, "face numbers")
+        if self.face_label is not None:
+            require_choice("face_label", self.face_label, FACE_LABELS, "face label")
+        if self.belt_length is not None:
+            _require_int(
+                "belt_length", self.belt_length, SHORTEST_DRAWN_BELT, LONGEST_BELT, "belt lengths"
+            )
+        if self.belt is not None:
+            if self.belt_length is None:
+                raise OptionError("belt", "a belt is one of the belts of a length: give it")
+            _require_int("belt", self.belt, 1, 2**31 - 1, "belt numbers")
+        if self.columns is not None:
+            _require_int("columns", self.columns, 1, 1000, "columns")
+        if self.solid and (self.weinberg or self.named or self.gallery):
+            raise OptionError(
+                "solid",
+                "a grain is drawn in space from its input's corner positions: only grains "
+                "chosen by id have them",
+            )
+
+    @property
+    def gallery(self) -> bool:
+        """Whether a data set's most frequent types are drawn."""
+        return self.top is not None or self.n_faces is not None or self.class_name is not None
+
+    @property
+    def face_label_kind(self) -> str:
+        """What each face shows: ``face_label``, or its default."""
+        return self.face_label or ("ids" if self.trees else "sides")
 
 
 def require_choice(name: str, value: object, choices: tuple[str, ...], what: str) -> None:

@@ -8,6 +8,7 @@ table gives the same SVG bytes (no date, a fixed hash salt).
 
 from __future__ import annotations
 
+import contextlib
 import os
 from collections.abc import Iterator
 from contextlib import contextmanager
@@ -66,20 +67,41 @@ def _pyplot():
 
 
 @contextmanager
-def _style() -> Iterator[object]:
+def pyplot_styled(style: dict) -> Iterator[object]:
+    """matplotlib's pyplot on the Agg backend, with ``style`` as its rcParams for the block,
+    and the SVG hash salt that makes the same figure the same bytes.
+
+    Raises
+    ------
+    MissingDependencyError
+        Without matplotlib.
+    """
     plt = _pyplot()
-    with plt.rc_context(
+    with plt.rc_context({"svg.hashsalt": "grainclass", "figure.dpi": 100, **style}):
+        yield plt
+
+
+def save_figure(fig: Figure, sink: BinaryIO, fmt: str) -> None:
+    """Write ``fig`` into ``sink`` as ``fmt`` (:func:`figure_format`), with no date or
+    version in it, so that the same figure is the same bytes."""
+    metadata = {
+        "png": {"Software": None},
+        "svg": {"Date": None},
+        "pdf": {"CreationDate": None},
+    }
+    fig.savefig(sink, format=fmt, metadata=metadata[fmt])
+
+
+def _style() -> contextlib.AbstractContextManager[object]:
+    return pyplot_styled(
         {
-            "svg.hashsalt": "grainclass",
-            "figure.dpi": 100,
             "savefig.dpi": 150,
             "axes.grid": True,
             "grid.alpha": 0.3,
             "legend.frameon": False,
             "font.size": 9,
         }
-    ):
-        yield plt
+    )
 
 
 def _style_of(i: int) -> dict:
@@ -276,11 +298,6 @@ def draw(kind: str, data: pd.DataFrame, sink: BinaryIO, fmt: str) -> None:
         fig = plt.figure(figsize=_SIZES.get(kind, (6.0, 4.0)), layout="constrained")
         try:
             _DRAW[kind](fig, data)
-            metadata = {
-                "png": {"Software": None},
-                "svg": {"Date": None},
-                "pdf": {"CreationDate": None},
-            }
-            fig.savefig(sink, format=fmt, metadata=metadata[fmt])
+            save_figure(fig, sink, fmt)
         finally:
             plt.close(fig)

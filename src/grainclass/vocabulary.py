@@ -43,6 +43,12 @@ PENALTIES = ("P4", "P4..L", "P4/sym", "P4..L/sym", "sym", "(1+P4)*sym", "(1+P4..
 # Named grains that `grainclass plot evolution --series` follows beside the classes.
 NAMED_SERIES = ("tetrahedron", "cube", "dodecahedron", "0:m", "triangles")
 
+# What `grainclass draw` writes in each face: its number of sides, its id, or nothing.
+FACE_LABELS = ("sides", "ids", "none")
+
+# What flipping an edge gives (`grainclass draw --flips`): another type, the same, or no grain.
+FLIP_RESULTS = ("other", "same", "none")
+
 
 def plural(count: int, word: str, words: str | None = None) -> str:
     """``count`` and ``word``, in the plural (``words``, else ``word + "s"``) unless one.

@@ -20,6 +20,7 @@ from grainclass import __version__, compilation, interrupts
 from grainclass.cli import output, signals, startup
 from grainclass.cli.census import census_cmd
 from grainclass.cli.classify import classify_cmd
+from grainclass.cli.draw import draw_cmd
 from grainclass.cli.exit_codes import GRAINS, ExitCode
 from grainclass.cli.penalties import penalties_cmd
 from grainclass.cli.perturb import perturb_cmd
@@ -49,6 +50,7 @@ for _command in (
     summarize_cmd,
     types_cmd,
     plot_cmd,
+    draw_cmd,
     penalties_cmd,
     perturb_cmd,
     voronoi_cmd,

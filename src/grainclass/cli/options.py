@@ -53,6 +53,15 @@ FLAGS = {
     "radius_column": "--radius-column",
     "workers": "--workers",
     "scheduler": "--scheduler",
+    "ids": "--id",
+    "weinberg": "--weinberg",
+    "named": "--named",
+    "top": "--top",
+    "outer_face": "--outer-face",
+    "face_label": "--labels",
+    "belt": "--belt",
+    "columns": "--columns",
+    "solid": "--3d",
 }
 
 
@@ -71,6 +80,19 @@ def nonempty_path(ctx: click.Context, param: click.Parameter, value: str | None)
         raise click.BadParameter("an empty path names no file")
     if value is not None and "\x00" in value:
         raise click.BadParameter("a path holds no NUL byte")
+    return value
+
+
+def figure_path(ctx: click.Context, param: click.Parameter, value: str) -> str:
+    """A figure's path: a .png, .svg or .pdf file."""
+    from grainclass.errors import OptionError
+    from grainclass.plots import figure_format
+
+    nonempty_path(ctx, param, value)
+    try:
+        figure_format(value)
+    except OptionError as exc:
+        raise click.BadParameter(exc.message) from None
     return value
 
 

@@ -15,18 +15,6 @@ EPILOG = exit_codes.epilog(
 )
 
 
-def _figure_path(ctx: click.Context, param: click.Parameter, value: str) -> str:
-    from grainclass.errors import OptionError
-    from grainclass.plots import figure_format
-
-    options.nonempty_path(ctx, param, value)
-    try:
-        figure_format(value)
-    except OptionError as exc:
-        raise click.BadParameter(exc.message) from None
-    return value
-
-
 def _times(ctx: click.Context, param: click.Parameter, value: str | None) -> list[float] | None:
     if value is None:
         return None
@@ -44,7 +32,7 @@ def _times(ctx: click.Context, param: click.Parameter, value: str | None) -> lis
     "--output",
     required=True,
     metavar="FIGURE",
-    callback=_figure_path,
+    callback=options.figure_path,
     help="The figure: .png, .svg or .pdf.",
 )
 @click.option(

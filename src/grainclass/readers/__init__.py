@@ -43,7 +43,8 @@ __all__ = [
 ]
 
 # The reader of each format read from a stream: (stream, source, chunk_size) -> batches
-# (planar_code's also takes ``raw``). Surface Evolver, read by file, is not among them.
+# (planar_code's also takes ``raw``, Neper's ``geometry``). Surface Evolver, read by file, is
+# not among them.
 STREAM_READERS: dict[str, Callable[..., Iterator[GrainBatch | PlanarCodeRecords]]] = {
     "adjacency": read_adjacency,
     "planar_code": read_planar_code,
@@ -117,7 +118,7 @@ def read_dataset(
             end = k
             while end < len(paths) and evolver_files[end]:
                 end += 1
-            yield from read_evolver(paths[k:end], chunk_size, triple_edges)
+            yield from read_evolver(paths[k:end], chunk_size, triple_edges, options.geometry)
             k = end
             continue
         path = paths[k]
@@ -136,8 +137,12 @@ def read_dataset(
                 stream = io.BufferedReader(_ReturnsAsNewlines(stream), 1 << 16)
             if fmt == "evolver":
                 raise InputError(path, "Surface Evolver input must be a file or a folder")
-            options = {"raw": raw_planar_code} if fmt == "planar_code" else {}
-            batches = STREAM_READERS[fmt](stream, path, chunk_size, **options)
+            extra: dict[str, bool] = {}
+            if fmt == "planar_code":
+                extra["raw"] = raw_planar_code
+            elif fmt == "neper":
+                extra["geometry"] = options.geometry
+            batches = STREAM_READERS[fmt](stream, path, chunk_size, **extra)
             grains = 0
             try:
                 for batch in batches:

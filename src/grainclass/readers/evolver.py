@@ -30,10 +30,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from grainclass._kernels.evolver import codes
-from grainclass._kernels.evolver.assemble import _assemble
+from grainclass._kernels.evolver.assemble import Surfaces, _assemble
 from grainclass._kernels.evolver.entries import TripleMarker
 from grainclass._kernels.evolver.tokenize import Tokens, _tokenize
-from grainclass.batch import GrainBatch, no_body_has
+from grainclass.batch import GrainBatch, Shape, no_body_has
 from grainclass.errors import InputError
 from grainclass.geometry import polytope_measures
 from grainclass.options import DEFAULT_TRIPLE_EDGES
@@ -72,6 +72,7 @@ class _Part:
     area: np.ndarray
     boundary: np.ndarray
     errors: dict[int, str]
+    shapes: list[Shape | None] | None = None
 
     def __len__(self) -> int:
         return len(self.grain_id)
@@ -81,6 +82,7 @@ def read_evolver(
     paths: Iterable[str],
     chunk_size: int,
     triple_edges: tuple[str, str] = DEFAULT_TRIPLE_EDGES,
+    geometry: bool = False,
 ) -> Iterator[GrainBatch]:
     """Read Surface Evolver datafiles as one dataset; every body is a grain.
 
@@ -92,13 +94,15 @@ def read_evolver(
         Grains per batch (a batch ends with a whole file).
     triple_edges : (str, str)
         The edge attribute and value that mark triple-line segments.
+    geometry : bool
+        Keep each grain's shape: its facets in space, unwrapped across a periodic box.
 
     Yields
     ------
     GrainBatch
         One grain per body: the file's stem when the file has one body, else the body id.
     """
-    read = functools.partial(_read_part, triple_edges=triple_edges)
+    read = functools.partial(_read_part, triple_edges=triple_edges, geometry=geometry)
     pending: list[_Part] = []
     grains = 0
     # The kernels release the GIL: the groups of files are read on as many threads as there
@@ -169,7 +173,7 @@ def _read_files(paths: list[str]) -> tuple[np.ndarray, np.ndarray]:
     return buf, starts
 
 
-def _read_part(paths: list[str], triple_edges: tuple[str, str]) -> _Part:
+def _read_part(paths: list[str], triple_edges: tuple[str, str], geometry: bool = False) -> _Part:
     """The grains of consecutive files (a malformed file is one bad grain, not a failed run)."""
     buf, starts = _read_files(paths)
     refused: dict[int, str] = {}
@@ -250,7 +254,28 @@ def _read_part(paths: list[str], triple_edges: tuple[str, str]) -> _Part:
         area=area,
         boundary=grains.boundary,
         errors=errors,
+        shapes=_shapes(surfaces, loop_offsets, ok, set(errors)) if geometry else None,
     )
+
+
+def _shapes(
+    surfaces: Surfaces, loop_offsets: np.ndarray, ok: np.ndarray, bad: set[int]
+) -> list[Shape | None]:
+    """Each grain's facets in space, as its body lists them (None for a grain that is not
+    read); which face of the grain a facet is part of is not kept."""
+    first = np.searchsorted(surfaces.loop_grain, np.arange(len(ok) + 1))
+    shapes: list[Shape | None] = []
+    for g in range(len(ok)):
+        if not ok[g] or g in bad:
+            shapes.append(None)
+            continue
+        patches = range(first[g], first[g + 1])
+        loops = [surfaces.corners[loop_offsets[p] : loop_offsets[p + 1]] for p in patches]
+        used, rows = np.unique(np.concatenate(loops), return_inverse=True)
+        ends = np.cumsum([len(loop) for loop in loops])[:-1]
+        polygons = tuple(np.split(rows.astype(np.int64), ends))
+        shapes.append(Shape(surfaces.position[used], polygons))
+    return shapes
 
 
 def _slow_numbers(buf: np.ndarray, tokens: Tokens) -> None:
@@ -434,4 +459,7 @@ def _batch(parts: list[_Part]) -> GrainBatch:
         volume=np.concatenate([p.volume for p in parts]),
         area=np.concatenate([p.area for p in parts]),
         boundary=np.concatenate([p.boundary for p in parts]),
+        shapes=None
+        if parts[0].shapes is None
+        else [shape for p in parts for shape in p.shapes or []],
     )

@@ -41,13 +41,14 @@ fanned from their first vertex.
 
 from __future__ import annotations
 
+import dataclasses
 from collections import Counter
 from collections.abc import Iterator
 from typing import BinaryIO
 
 import numpy as np
 
-from grainclass.batch import GrainBatch
+from grainclass.batch import GrainBatch, Shape
 from grainclass.errors import InputError
 from grainclass.geometry import loop_arrays, polytope_measures
 from grainclass.readers.loops import batch_from_loops
@@ -292,9 +293,12 @@ def _measures(
     return np.where(known, np.abs(volume), np.nan), np.where(known, area, np.nan)
 
 
-def read_neper(stream: BinaryIO, source: str, chunk_size: int) -> Iterator[GrainBatch]:
+def read_neper(
+    stream: BinaryIO, source: str, chunk_size: int, geometry: bool = False
+) -> Iterator[GrainBatch]:
     """Parse a 3D Neper ``.tess`` file (module docstring) into batches of at most
-    ``chunk_size`` grains, one a polyhedron, in file order.
+    ``chunk_size`` grains, one a polyhedron, in file order; with ``geometry``, each grain's
+    shape too (its faces' polygons, in its face order).
 
     Raises
     ------
@@ -353,7 +357,7 @@ def read_neper(stream: BinaryIO, source: str, chunk_size: int) -> Iterator[Grain
     chunk_size = max(chunk_size, 1)
     for start in range(0, len(rows), chunk_size):
         stop = min(start + chunk_size, len(rows))
-        yield batch_from_loops(
+        batch = batch_from_loops(
             [
                 (grain_id, line_no, grain_loops[k], volume[k], area[k], error)
                 for k, (grain_id, line_no, error) in enumerate(rows[start:stop], start)
@@ -365,6 +369,20 @@ def read_neper(stream: BinaryIO, source: str, chunk_size: int) -> Iterator[Grain
                 for entry in entries[start:stop]
             ],
         )
+        if geometry:
+            shapes = [_shape(coords, grain_loops[k]) for k in range(start, stop)]
+            batch = dataclasses.replace(batch, shapes=shapes)
+        yield batch
+
+
+def _shape(coords: np.ndarray, loops: list[list[int]] | None) -> Shape | None:
+    """A grain's faces in space, each its own polygon, in the grain's face order."""
+    if loops is None:
+        return None
+    used = sorted({v for loop in loops for v in loop})
+    row = {v: i for i, v in enumerate(used)}
+    polygons = tuple(np.array([row[v] for v in loop], np.int64) for loop in loops)
+    return Shape(coords[used], polygons, np.arange(len(loops), dtype=np.int64))
 
 
 def _polyhedron_entry(fields: list[str]) -> tuple[list[int] | None, str | None]:
