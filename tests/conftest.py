@@ -42,6 +42,13 @@ def plantri_output(plantri, tmp_path_factory):
 def pytest_configure(config):
     # Tests run the real console script in subprocesses; make sure numba's cache is writable.
     os.environ.setdefault("NUMBA_CACHE_DIR", str(ROOT / "build" / "numba-cache"))
+    # A suite started in the background (`make test &`, nohup) inherits SIGINT and SIGHUP
+    # ignored, and so would every command it starts, which keeps them ignored as a command
+    # does: the tests that stop a command with them need them as a terminal gives them.
+    if signal.getsignal(signal.SIGINT) == signal.SIG_IGN:
+        signal.signal(signal.SIGINT, signal.default_int_handler)
+    if signal.getsignal(signal.SIGHUP) == signal.SIG_IGN:
+        signal.signal(signal.SIGHUP, signal.SIG_DFL)
 
 
 def has_children(pid: int) -> bool:
