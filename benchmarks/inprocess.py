@@ -6,7 +6,7 @@ A worker is ``PYTHON benchmarks/inprocess.py SUITE PATH``: it imports the benchm
 SUITE (``kernels`` or ``perturb``), whose ``measures(path)`` reads the grains, compiles what the
 runs use and gives ``(grains, {name: run})``. It then writes ``ready GRAINS`` and, for each line
 ``THREADS NAME`` it reads, runs ``NAME`` once on that many threads and writes the wall
-seconds, or ``failed`` (the traceback goes to standard error): the other checkout's code may
+seconds, or ``failed`` (and, once a measure, why on standard error): the other checkout's code may
 lack a function or take other arguments.
 """
 
@@ -17,7 +17,6 @@ import os
 import subprocess
 import sys
 import time
-import traceback
 from collections.abc import Sequence
 from pathlib import Path
 
@@ -117,6 +116,7 @@ def main() -> None:
     grains, runs = importlib.import_module(suite).measures(Path(path))
     replies.write(f"ready {grains}\n")
     jobs = None
+    failed: set[str] = set()
     for line in sys.stdin:
         threads, name = line.split(maxsplit=1)
         if int(threads) != jobs:  # a new pool of threads only when their number changes
@@ -125,9 +125,11 @@ def main() -> None:
         start = time.perf_counter()
         try:
             runs[name.strip()]()
-        except Exception:  # the other checkout's code may not have what the measure calls
-            traceback.print_exc()
+        except Exception as exc:  # the other checkout's code may not have what it calls
             replies.write("failed\n")
+            if name not in failed:  # one line a measure, not a traceback a pass
+                failed.add(name)
+                print(f"{name.strip()} failed here: {type(exc).__name__}: {exc}", file=sys.stderr)
         else:
             replies.write(f"{time.perf_counter() - start}\n")
 
