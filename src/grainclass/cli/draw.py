@@ -20,14 +20,7 @@ MAX_INDEX = 2**31 - 1
 
 @click.command("draw", cls=errors.Command, epilog=EPILOG)
 @click.argument("inputs", nargs=-1, metavar="[INPUT]...")
-@click.option(
-    "-o",
-    "--output",
-    required=True,
-    metavar="FIGURE",
-    callback=options.figure_path,
-    help="The figure: .png, .svg or .pdf.",
-)
+@options.figure_output()
 @click.option(
     "--id", "ids", multiple=True, metavar="ID", help="The grain with this id (repeatable)."
 )

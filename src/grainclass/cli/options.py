@@ -96,6 +96,18 @@ def figure_path(ctx: click.Context, param: click.Parameter, value: str) -> str:
     return value
 
 
+def figure_output() -> Callable[[F], F]:
+    """``-o/--output FIGURE``: the figure a command draws."""
+    return click.option(
+        "-o",
+        "--output",
+        required=True,
+        metavar="FIGURE",
+        callback=figure_path,
+        help="The figure: .png, .svg or .pdf.",
+    )
+
+
 def vertex_counts(ctx: click.Context, param: click.Parameter, values: tuple[str, ...]) -> list[int]:
     """N arguments: numbers of vertices, or ranges ``A..B`` (both ends included)."""
     ns: list[int] = []

@@ -27,14 +27,7 @@ def _times(ctx: click.Context, param: click.Parameter, value: str | None) -> lis
 @click.command("plot", cls=errors.Command, epilog=EPILOG)
 @click.argument("kind", type=click.Choice(PLOT_KINDS), metavar="KIND")
 @click.argument("inputs", nargs=-1, required=True, metavar="INPUT...")
-@click.option(
-    "-o",
-    "--output",
-    required=True,
-    metavar="FIGURE",
-    callback=options.figure_path,
-    help="The figure: .png, .svg or .pdf.",
-)
+@options.figure_output()
 @click.option(
     "--label",
     "labels",
