@@ -171,4 +171,7 @@ def end_quietly_on_interrupt(*_: object) -> None:
 
 
 def _end_quietly(signum: int, frame: object) -> None:
+    from grainclass.atomic import remove_temporaries
+
+    remove_temporaries()  # a part it was writing (a data set in parts) is not left half-made
     os._exit(128 + signum)
