@@ -88,10 +88,11 @@ def output_folder(ctx: click.Context, param: click.Parameter, value: str | None)
 
 
 def is_folder(path: str) -> bool:
-    """Whether an output names a folder: one that exists, or a path that ends with ``/``."""
+    """Whether an output names a folder to write a data set in parts into: a path that ends with
+    ``/`` (a folder named without it stays an output file that cannot be written, as before)."""
     import os
 
-    return path.endswith(("/", os.sep)) or os.path.isdir(path)
+    return path.endswith(("/", os.sep))
 
 
 def _address(ctx: click.Context, param: click.Parameter, value: str | None) -> str | None:

@@ -86,7 +86,7 @@ def periodic_axes(ctx: click.Context, param: click.Parameter, value: str | None)
     metavar="FILE|DIR/",
     callback=options.nonempty_path,
     help="Adjacency text with volume= and area= per grain; *.parquet: classified grains; a "
-    "folder (DIR/, or one that exists): classified grains in parts, on Dask.",
+    "folder (DIR/, with its /): classified grains in parts, on Dask.",
 )
 @click.option(
     "--parts",
@@ -233,13 +233,16 @@ def _in_parts(
     **what,
 ) -> None:
     """The tessellation as a data set in parts on Dask (``what``: the seeds or the points)."""
+    from grainclass.box import Box
     from grainclass.cli.progress import PartsPrinter, parts_line
     from grainclass.cluster import dask_client
     from grainclass.parts import remove_part_temporaries
-    from grainclass.voronoi_parts import default_parts, tessellate_in_parts
+    from grainclass.voronoi_parts import Slabs, default_parts, tessellate_in_parts
 
     points = what.get("points")
     n = len(points.xyz) if points is not None else what["n_seeds"]
+    if parts is not None:  # before a cluster starts
+        Slabs(what.get("box") or Box.cube(what.get("side", 1.0)), n, parts)
     try:
         with dask_client(scheduler, workers) as client:
             if parts is None:
