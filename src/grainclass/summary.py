@@ -311,6 +311,9 @@ def _distinct(hashes: list[np.ndarray]) -> int:
     return int(1 + np.count_nonzero(joined[1:] != joined[:-1]))
 
 
+MERGE_EVERY = 64  # tallies (and arrays of type hashes) held before they are merged
+
+
 def merge_tallies(tallies: list[pd.DataFrame]) -> pd.DataFrame:
     """One tally from several (same groups added up)."""
     if not tallies:
@@ -480,12 +483,21 @@ def summarize(
     """
     items = [grains] if isinstance(grains, pa.Table) else grains
     frames, hashes, excluded, typed = [], [], 0, True
+    held = 0  # hashes held since they were last made distinct
     for item in items:
         part = item if isinstance(item, Tally) else tally_table(item, include_boundary, belt_length)
         frames.append(part.counts)
         hashes.append(part.type_hashes)
+        held += part.type_hashes.size
         excluded += part.boundary_excluded
         typed &= part.typed
+        # A long stream (a data set of millions of grains in thousands of row groups) is held
+        # as its tallies so far and its distinct hashes, not as every batch's.
+        if len(frames) >= MERGE_EVERY:
+            frames = [merge_tallies(frames)]
+        if len(hashes) >= MERGE_EVERY and held > 2 * hashes[0].size:
+            hashes = [np.unique(np.concatenate(hashes))]
+            held = hashes[0].size
     counts = merge_tallies(frames)
     # Distinct types are known only if every part knows its grains' types: a count over some
     # would pass for the whole.
