@@ -12,11 +12,13 @@ import json
 import os
 import shutil
 
+import dask
 import pandas as pd
 import pyarrow.parquet as pq
 import pytest
 from click.testing import CliRunner
 
+from conftest import die_once
 from grainclass import read_grains, summary_tables, type_counts
 from grainclass.classify_parts import classify_in_parts, input_fingerprint
 from grainclass.cli import cli
@@ -165,3 +167,30 @@ def test_a_folder_input_changes_when_one_of_its_files_does(tmp_path):
     assert input_fingerprint(str(step)) != before
     with pytest.raises(InputError, match="no such file or folder"):
         input_fingerprint(str(tmp_path / "gone"))
+
+
+def test_a_part_whose_workers_all_die_is_named_and_the_rerun_finishes(tmp_path, inputs):
+    """With no second try allowed, a worker that dies fails its part (and any other part Dask
+    had handed it, which waited its turn there), named; the finished parts are kept, and the
+    next run (with the worker's stand-in) classifies the failed parts alone."""
+    out = str(tmp_path / "out")
+    with (
+        dask.config.set({"distributed.scheduler.allowed-failures": 0}),
+        dask_client(workers=2) as dask_cluster,
+    ):
+        dask_cluster.register_plugin(die_once("part-00001", tmp_path / "died"))
+        failed = classify_in_parts(inputs, out, dask_cluster)
+        assert (tmp_path / "died").exists()
+        named = {failure.split(" ")[0] for failure in failed.failures}
+        assert "part-00001" in named
+        died = f"part-00001 ({inputs[1]}): every worker that ran it died"
+        assert any(failure.startswith(died) for failure in failed.failures)
+        assert failed.computed == 4 - len(named)
+        assert not json.loads((tmp_path / "out" / DATASET_FILE).read_text())["complete"]
+        kept = {p.name: p.stat().st_mtime_ns for p in (tmp_path / "out").glob("part-*")}
+        assert {f"{name}.parquet" for name in named}.isdisjoint(kept)
+        again = classify_in_parts(inputs, out, dask_cluster)
+    assert (again.computed, again.skipped, again.failures) == (len(named), len(kept), [])
+    for name, mtime in kept.items():
+        assert (tmp_path / "out" / name).stat().st_mtime_ns == mtime
+    pd.testing.assert_frame_equal(read_grains(out), read_grains(inputs))

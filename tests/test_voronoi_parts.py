@@ -13,16 +13,13 @@ import json
 import os
 import subprocess
 import sys
-import threading
-import time
-from pathlib import Path
 
 import numpy as np
 import pandas as pd
 import pytest
 from click.testing import CliRunner
 
-from conftest import ctrl_c_at_a_terminal
+from conftest import ctrl_c_at_a_terminal, die_once
 from grainclass import voronoi
 from grainclass.box import Box
 from grainclass.cli import cli
@@ -256,34 +253,11 @@ def test_a_folder_output_that_is_a_file_is_refused(tmp_path):
     assert "is not a folder" in result.stderr
 
 
-class _DieWritingPart:
-    """A worker plugin (the test's hook): the worker that starts running the task of part
-    ``name`` dies as soon as the part's temporary file is there, once (``marker`` says so)."""
-
-    def __init__(self, directory: str, name: str, marker: str) -> None:
-        self.directory, self.name, self.marker = directory, name, marker
-
-    def transition(self, key, start, finish, **kwargs):
-        if finish != "executing" or self.name not in str(key) or os.path.exists(self.marker):
-            return
-        Path(self.marker).touch()
-
-        def die_while_writing() -> None:
-            while not [f for f in os.listdir(self.directory) if f.startswith(f".{self.name}")]:
-                time.sleep(0.001)
-            os._exit(1)
-
-        threading.Thread(target=die_while_writing, daemon=True).start()
-
-
 def test_a_worker_that_dies_costs_only_its_part(tmp_path):
-    from distributed.diagnostics.plugin import WorkerPlugin
-
-    plugin = type("DieWritingPart", (_DieWritingPart, WorkerPlugin), {})
     out = tmp_path / "out"
     out.mkdir()
     with dask_client(workers=2) as dask:
-        dask.register_plugin(plugin(str(out), "part-00002", str(tmp_path / "died")))
+        dask.register_plugin(die_once("part-00002", tmp_path / "died", writing=out))
         before = set(dask.run(os.getpid).values())
         result = tessellate_in_parts(str(out), dask, 4, n_seeds=20000, seed=4)
         after = set(dask.run(os.getpid).values())
