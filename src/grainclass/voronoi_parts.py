@@ -112,7 +112,11 @@ class Slabs:
 
     def part_of(self, z_blocks: np.ndarray) -> np.ndarray:
         """The slab of points in these z-blocks."""
-        return np.searchsorted(self.cuts, z_blocks, side="right") - 1
+        return self._part_of_layer[z_blocks]
+
+    @functools.cached_property
+    def _part_of_layer(self) -> np.ndarray:
+        return np.repeat(np.arange(self.parts), np.diff(self.cuts))
 
     def bounds(self, k: int) -> tuple[float, float]:
         """Where slab ``k`` starts and ends along z."""
@@ -208,7 +212,6 @@ class PartJob:
     reach_radius: float = 0.0
     seed: int | None = None  # random seeds: drawn from this
     source: str = ""
-    simple: bool = True  # every corner of three faces is expected (random seeds)
     chunk_size: int = DEFAULT_CHUNK_SIZE
 
 
@@ -320,7 +323,6 @@ def tessellate_in_parts(
         For more parts than layers of blocks, or a tilted box in more than one part.
     DataError, OutputError
     """
-    from grainclass import __version__
     from grainclass.cluster import Tasks, task_failure
     from grainclass.parts import read_dataset_file
 
@@ -368,7 +370,6 @@ def tessellate_in_parts(
         reach_radius=0.0 if points is None or points.radii is None else float(points.radii.max()),
         seed=seed if points is None else None,
         source=source,
-        simple=points is None,
         chunk_size=chunk_size,
     )
     by_part = _split_points(points, slabs) if points is not None else None
@@ -387,8 +388,11 @@ def tessellate_in_parts(
             identity={**identity, "part": index},
         )
         data = None if by_part is None else tasks.scatter(by_part(index, wider))
-        # Lower parts first: their rows come first in the data set.
-        tasks.submit(f"part-{index:05d}", tessellation_part, part, data, priority=-index)
+        # Thicker slabs first (more layers of blocks: more cells), so that the last to finish
+        # are short; among equals, lower parts first.
+        layers = int(slabs.cuts[index + 1] - slabs.cuts[index])
+        priority = layers * (parts + 1) + parts - index
+        tasks.submit(f"part-{index:05d}", tessellation_part, part, data, priority=priority)
 
     for index in range(parts):
         found = folder.done(index, {**identity, "part": index})
@@ -430,7 +434,6 @@ def tessellate_in_parts(
             "checks_passed": not problems and not result.failures,
             "problems": problems,
             "failures": result.failures,
-            "grainclass_run": __version__,
         }
     )
     return result
@@ -498,11 +501,10 @@ def _seed_points(job: PartJob, container: Container) -> PartPoints:
         mine = owner == job.index
         own.append(xyz[mine])
         own_keys.append(first + np.flatnonzero(mine))
-        others = np.flatnonzero(~mine)
-        inside, shift = container.images(xyz[others, 2])
-        others = others[inside]
+        inside, shift = container.images(xyz[:, 2])
+        others = np.flatnonzero(inside & ~mine)
         moved = xyz[others]
-        moved[:, 2] += shift[inside]
+        moved[:, 2] += shift[others]
         margin.append(moved)
         margin_keys.append(first + others)
         margin_parts.append(owner[others])
