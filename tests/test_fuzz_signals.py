@@ -7,6 +7,7 @@ from __future__ import annotations
 import signal
 
 import pytest
+
 from fuzz_signals import COMMANDS, prepare, run_case
 
 
