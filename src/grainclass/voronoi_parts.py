@@ -493,20 +493,25 @@ def _seed_points(job: PartJob, container: Container) -> PartPoints:
     rng = np.random.default_rng(job.seed)
     per_layer = np.zeros(slabs.layers, dtype=np.int64)
     own, own_keys, margin, margin_keys, margin_parts = [], [], [], [], []
+    near = _near_layers(slabs, job.index, container)
     for first in range(0, slabs.n, DRAW_CHUNK):
         xyz = rng.random((min(DRAW_CHUNK, slabs.n - first), 3)) * side
         z_blocks = slabs.z_blocks(xyz)
         per_layer += np.bincount(z_blocks, minlength=slabs.layers)
-        owner = slabs.part_of(z_blocks)
+        # Only points of the layers near the part are looked at further: with many parts,
+        # the others are most points, and each part draws them all.
+        candidates = np.flatnonzero(near[z_blocks])
+        xyz = xyz[candidates]
+        owner = slabs.part_of(z_blocks[candidates])
         mine = owner == job.index
         own.append(xyz[mine])
-        own_keys.append(first + np.flatnonzero(mine))
+        own_keys.append(first + candidates[mine])
         inside, shift = container.images(xyz[:, 2])
         others = np.flatnonzero(inside & ~mine)
         moved = xyz[others]
         moved[:, 2] += shift[others]
         margin.append(moved)
-        margin_keys.append(first + others)
+        margin_keys.append(first + candidates[others])
         margin_parts.append(owner[others])
     xyz, keys = np.concatenate(own), np.concatenate(own_keys)
     order = block_order(xyz, slabs.box, slabs.blocks)
@@ -521,6 +526,23 @@ def _seed_points(job: PartJob, container: Container) -> PartPoints:
         margin_keys=np.concatenate(margin_keys),
         margin_parts=np.concatenate(margin_parts),
     )
+
+
+def _near_layers(slabs: Slabs, k: int, container: Container) -> np.ndarray:
+    """Per layer of blocks, whether its points may be part ``k``'s or in its container: the
+    layers that meet the container (or one of its periodic images), and their neighbours,
+    which a point rounded across a layer's side may be in."""
+    if container.whole:
+        return np.ones(slabs.layers, dtype=bool)
+    low, length = slabs.box.low[2], float(slabs.box.lengths[2])
+    sides = low + length * np.arange(slabs.layers + 1) / slabs.layers
+    near = np.zeros(slabs.layers, dtype=bool)
+    near[slabs.cuts[k] : slabs.cuts[k + 1]] = True
+    for shift in [0.0] if container.period is None else [0.0, -length, length]:
+        near |= (sides[1:] + shift >= container.box.low[2]) & (
+            sides[:-1] + shift <= container.box.high[2]
+        )
+    return near | np.roll(near, 1) | np.roll(near, -1)
 
 
 class _ReachedPast(Exception):
