@@ -86,7 +86,8 @@ class DatasetFolder:
 
     def __init__(self, directory: str, identity: dict, parts: int) -> None:
         check_output_folder(directory)
-        self.directory = Path(directory)
+        # Absolute: the workers write the parts, and on another machine from another folder.
+        self.directory = Path(os.path.abspath(directory))
         self.identity = json.loads(json.dumps(identity))  # as read back: lists, not tuples
         self.parts = parts
         try:
