@@ -14,7 +14,7 @@ FIGURE_SEEDS ?= 100000
 # One time step of a grain-growth simulation, one Surface Evolver file per grain.
 GRAIN_GROWTH ?= tests/data/evolver/grain3d
 
-.PHONY: all install voro FORCE demo figures test test-nojit test-lowest lint bench bench-prisms fuzz reproduce-enumeration reproduce-voronoi reproduce-census bench-census clean
+.PHONY: all install voro FORCE demo figures test test-nojit test-lowest lint bench bench-prisms bench-parts fuzz reproduce-enumeration reproduce-voronoi reproduce-census bench-census clean
 
 all: lint test
 
@@ -110,7 +110,8 @@ lint: install
 	$(BIN)/python -m ruff check src tests scripts benchmarks
 	$(BIN)/python -m ruff format --check src tests scripts benchmarks
 
-# Speed and memory, measured in one run (plantri n = 14, 15, 16, three rounds; about fifteen minutes).
+# Speed and memory, measured in one run (plantri n = 14, 15, 16, three rounds; about fifteen minutes,
+# and a tessellation of 10 million cells in parts, some minutes more).
 # Before and after in one run: BENCH_ARGS='--compare-src DIR' times the grainclass of another
 # checkout DIR (with its own make install) in turn with this one, in the same rounds, and gives
 # for each figure ours, theirs and ours/theirs (about twice as long). Here for bench-prisms and
@@ -132,6 +133,11 @@ FUZZ_TRIALS ?= 50
 fuzz: install
 	$(BIN)/python scripts/fuzz.py --cases $(FUZZ_CASES)
 	$(BIN)/python scripts/fuzz_signals.py --trials $(FUZZ_TRIALS)
+
+# voronoi 10,000,000 --parts 16 on a local Dask cluster against linear scaling from one process's
+# voronoi 268402, and summarize of its folder (some minutes; BENCH_ARGS='--parts-seeds N').
+bench-parts: voro install
+	$(BIN)/python benchmarks/bench.py --parts-only $(BENCH_ARGS)
 
 # The census (n = 16 and 17, several minutes) against plantri alone on the same parts.
 bench-census: install

@@ -9,8 +9,10 @@ warm run, and ``grainclass --help``; (f) the Voronoi generator; (g) ``grainclass
 against plantri alone on the same parts; (h) ``grainclass perturb`` against ``grainclass
 classify`` on the same grains, as planar_code and as adjacency text; (i) one giant grain, the
 k-gonal prism for k = 1,000, 4,000 and 20,000, with and without types; (j) a folder of Surface
-Evolver grain files end to end, against ``cat`` of the same files. Each topic is a module of
-its own beside this one.
+Evolver grain files end to end, against ``cat`` of the same files; (k) ``grainclass voronoi N
+--parts P -o DIR/`` on a local Dask cluster against linear scaling from one process's
+``voronoi 268402``, and the mean faces per grain of ``summarize DIR/``. Each topic is a module
+of its own beside this one.
 
 With ``--compare-src DIR``, every figure of grainclass is measured for another checkout too
 (its own ``.venv``, from its ``make install``), ours and theirs in turn in the same rounds, and
@@ -36,6 +38,7 @@ from prisms import bench_prisms
 from startup import bench_startup
 from timing import Checkout, checkouts
 from voronoi import bench_voronoi
+from voronoi_parts import bench_voronoi_parts
 
 
 def main() -> None:
@@ -64,6 +67,15 @@ def main() -> None:
     )
     parser.add_argument("--evolver-only", action="store_true", help="only (j), Evolver files")
     parser.add_argument(
+        "--parts-seeds",
+        type=int,
+        default=10_000_000,
+        help="seeds of (k), a tessellation in parts (default 10,000,000: some minutes)",
+    )
+    parser.add_argument("--parts", type=int, default=16, help="parts of (k) (default 16)")
+    parser.add_argument("--parts-rounds", type=int, default=1, help="rounds of (k) (default 1)")
+    parser.add_argument("--parts-only", action="store_true", help="only (k), voronoi in parts")
+    parser.add_argument(
         "--compare-src",
         type=Path,
         metavar="DIR",
@@ -91,7 +103,10 @@ def main() -> None:
 
 def run(args: argparse.Namespace, work: Path, sides: list[Checkout]) -> None:
     """The sections the options ask for, in the report's order."""
-    if args.perturb_only or args.prisms_only or args.voronoi_only or args.evolver_only:
+    only = (args.perturb_only, args.prisms_only, args.voronoi_only, args.evolver_only)
+    if any(only) or args.parts_only:
+        if args.parts_only:
+            bench_voronoi_parts(work, sides, args.parts_seeds, args.parts, args.parts_rounds)
         if args.voronoi_only:
             bench_voronoi(work, sides)
         if args.perturb_only:
@@ -112,6 +127,7 @@ def run(args: argparse.Namespace, work: Path, sides: list[Checkout]) -> None:
         bench_perturb(work, args.rounds, sides)
         bench_prisms(args.prisms, work, sides)
         bench_evolver(args.evolver_files, args.rounds, work, sides)
+        bench_voronoi_parts(work, sides, args.parts_seeds, args.parts, args.parts_rounds)
 
 
 if __name__ == "__main__":

@@ -145,6 +145,39 @@ def _tree_rss_kb(root: int) -> dict[int, int]:
     return {pid: rss.get(pid, 0) for pid in tree}
 
 
+class ProcessesTiming(NamedTuple):
+    seconds: float  # wall
+    cpu: float  # user + system seconds of the command and every process it waited for
+    largest_mb: float  # peak resident memory of its largest process
+    all_mb: float  # peak of the summed resident memory of all its processes, sampled
+
+
+def timed_processes(command: str) -> ProcessesTiming:
+    """Wall and CPU seconds of a shell command whose processes (Dask's workers) it waits for,
+    its largest process's peak memory (``/usr/bin/time``), and the peak of all its processes
+    together, sampled every 0.1 s. On a shared machine the CPU time tells the work done apart
+    from the wait for a core."""
+    fd, record = tempfile.mkstemp(suffix=".time")
+    os.close(fd)
+    wrapped = f"/usr/bin/time -f '%M %U %S' -o {record} bash -c {_quote(command)}"
+    start = time.perf_counter()
+    process = subprocess.Popen(wrapped, shell=True, stderr=subprocess.DEVNULL)
+    peak = 0
+    while process.poll() is None:
+        peak = max(peak, sum(_tree_rss_kb(process.pid).values()))
+        time.sleep(0.1)
+    seconds = time.perf_counter() - start
+    try:
+        if process.returncode:
+            raise subprocess.CalledProcessError(process.returncode, command)
+        largest_kb, user, system = Path(record).read_text().split()[-3:]
+    finally:
+        os.unlink(record)
+    return ProcessesTiming(
+        seconds, float(user) + float(system), int(largest_kb) / 1024, peak / 1024
+    )
+
+
 def in_turn(
     command: Callable[[Checkout], str],
     sides: Sequence[Checkout],

@@ -6,6 +6,7 @@ import os
 import signal
 import subprocess
 import sys
+import threading
 import time
 from collections.abc import Callable
 from pathlib import Path
@@ -77,3 +78,34 @@ def ctrl_c_at_a_terminal(*args: str, when: Callable[[int], bool] = has_children)
     os.killpg(run.pid, signal.SIGINT)
     _, err = run.communicate(timeout=60)
     return run.returncode, err.decode()
+
+
+class DieOnce:
+    """A Dask worker plugin, the tests' hook: the worker that starts the task of part ``name``
+    dies (os._exit) once, at once or, given ``writing``, as soon as the part's temporary file
+    is in that folder. The file ``marker`` says it has died."""
+
+    def __init__(self, name: str, marker: str, writing: str | None) -> None:
+        self.name, self.marker, self.writing = name, marker, writing
+
+    def transition(self, key, start, finish, **kwargs):
+        if finish != "executing" or self.name not in str(key) or os.path.exists(self.marker):
+            return
+        Path(self.marker).touch()
+        if self.writing is None:
+            os._exit(1)
+
+        def die_while_writing() -> None:
+            while not [f for f in os.listdir(self.writing) if f.startswith(f".{self.name}")]:
+                time.sleep(0.001)
+            os._exit(1)
+
+        threading.Thread(target=die_while_writing, daemon=True).start()
+
+
+def die_once(name: str, marker: Path, writing: Path | None = None):
+    """A :class:`DieOnce` worker plugin to register with a Dask client."""
+    from distributed.diagnostics.plugin import WorkerPlugin
+
+    plugin = type("DieOncePlugin", (DieOnce, WorkerPlugin), {})
+    return plugin(name, str(marker), None if writing is None else str(writing))

@@ -27,7 +27,7 @@ from grainclass.census import (
     ProgressTracker,
     run_census,
 )
-from grainclass.cli.progress import CensusPrinter
+from grainclass.cli.progress import PartsPrinter
 from grainclass.cluster import dask_client
 from grainclass.options import ReadOptions
 from grainclass.pipeline import tallies
@@ -324,7 +324,7 @@ def test_time_left_comes_from_plantri_counts_then_parts_then_growth():
 
 
 def test_progress_lines_in_a_log_are_spaced_out(capsys):
-    printer = CensusPrinter(every=3600)
+    printer = PartsPrinter(every=3600)
     for done in (1, 2, 3, 4, 4):
         printer(CensusProgress(done, 4, 1000 * done, 2500.0, 60.0 * (4 - done)))
     lines = capsys.readouterr().err.splitlines()

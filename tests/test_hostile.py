@@ -167,7 +167,7 @@ def test_voronoi_options_that_would_be_ignored_are_refused(tmp_path, options, sa
 @pytest.mark.parametrize(
     ("options", "code", "said"),
     [
-        (["--scheduler", "bogus"], 2, "'bogus' is no scheduler address"),
+        (["--scheduler", "bogus"], 2, "--scheduler: 'bogus' is no scheduler address"),
         (["--plantri", "/bin/false"], 1, "/bin/false -u 4 failed (exit 1)"),
         (["--plantri", "/no/such/plantri"], 1, "/no/such/plantri: cannot be run"),
         (["--workers", "100000"], 2, "--workers"),

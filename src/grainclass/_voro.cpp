@@ -5,13 +5,23 @@
 // computes the cells of those points on every thread at once, without the GIL, and hands back
 // per cell the faces across each edge of each face (the face adjacency, counter-clockwise seen
 // from outside), the point behind each face (a negative number: the wall of a non-periodic
-// side), its volume, its surface area and flags.
+// side), its volume, its surface area, flags and its reach along z (below).
+//
+// A tessellation in parts (grainclass.voronoi_parts) holds, besides the points whose cells it
+// computes (the first ``owned``), a margin of other parts' points: faces towards those are
+// checked across parts, not here. A cell's reach along z says how far its neighbours may be:
+// a point q changes the cell of p only if, at some corner v, q is nearer than p in the power
+// distance, |v - q|^2 - r_q^2 < |v - p|^2 - r_p^2 <= |v - p|^2 - r_p^2 + R^2 with R the
+// largest radius (0 for Voronoi cells): q lies in the ball about v of that radius. reach_up
+// and reach_down bound those balls above and below the point, so that a cell whose balls stay
+// inside the points held is the cell of all points.
 
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
 #include <cmath>
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <cstring>
@@ -45,6 +55,8 @@ struct Cells {
     std::vector<double> volume;         // per cell
     std::vector<double> area;           // per cell
     std::vector<int8_t> flags;          // per cell
+    std::vector<double> reach_up;       // per cell: the balls' highest z, from the point
+    std::vector<double> reach_down;     // per cell: the balls' lowest z, below the point
 
     void append(Cells &&other) {
         auto move = [](auto &to, auto &from) { to.insert(to.end(), from.begin(), from.end()); };
@@ -55,6 +67,8 @@ struct Cells {
         move(volume, other.volume);
         move(area, other.area);
         move(flags, other.flags);
+        move(reach_up, other.reach_up);
+        move(reach_down, other.reach_down);
     }
 };
 
@@ -126,6 +140,19 @@ class FlatCell : public voro::voronoicell_neighbor {
         }
         return whole;
     }
+
+    // How far above (``up``) and below (``down``) the point the balls about the corners reach
+    // (see the top of this file); ``extra`` is R^2 - r_p^2.
+    void reach(double extra, double &up, double &down) const {
+        up = down = 0.0;
+        for (int i = 0; i < p; ++i) {
+            const double x = 0.5 * pts[3 * i], y = 0.5 * pts[3 * i + 1],
+                         z = 0.5 * pts[3 * i + 2];
+            const double radius = std::sqrt(x * x + y * y + z * z + extra);
+            up = std::max(up, z + radius);
+            down = std::max(down, radius - z);
+        }
+    }
 };
 
 template <class T>
@@ -173,9 +200,14 @@ template <class Container, class Loop>
 class Engine : public EngineBase {
   public:
     Engine(const double *xyz, const double *radii, int64_t n, const Geometry &geometry,
-           int copies)
-        : block_(n, -1), slot_(n, -1),
+           int copies, int64_t owned, double reach_radius)
+        : block_(n, -1), slot_(n, -1), owned_(owned),
           listed_(copies, std::vector<uint64_t>(n)), listed_back_(copies, std::vector<uint64_t>(n)) {
+        if (radii) {
+            radii_.assign(radii, radii + n);
+            for (double r : radii_) reach_radius = std::max(reach_radius, r);
+        }
+        reach_radius_squared_ = reach_radius * reach_radius;
         for (int k = 0; k < copies; ++k) {
             containers_.emplace_back(make_container<Container>(geometry));
             Container &con = *containers_.back();
@@ -197,11 +229,11 @@ class Engine : public EngineBase {
         return out;
     }
 
-    // The points whose cells list a face that the cell behind it does not list back (of the
-    // cells computed so far: meaningful once every cell is).
+    // The owned points whose cells list a face that the cell behind it does not list back (of
+    // the cells computed so far: meaningful once every owned point's cell is).
     std::vector<int64_t> one_sided() const override {
         std::vector<int64_t> out;
-        for (size_t i = 0; i < block_.size(); ++i) {
+        for (size_t i = 0; i < static_cast<size_t>(owned_); ++i) {
             uint64_t a = 0, b = 0;
             for (size_t t = 0; t < listed_.size(); ++t) {
                 a += listed_[t][i];
@@ -231,6 +263,9 @@ class Engine : public EngineBase {
   private:
     std::vector<std::unique_ptr<Container>> containers_;
     std::vector<int> block_, slot_;
+    int64_t owned_;  // points from owned_ on are a margin: their cells are not computed
+    std::vector<double> radii_;  // Laguerre cells: the points' radii
+    double reach_radius_squared_ = 0.0;  // R^2 (see the top of this file)
     // Per thread and point: the sum of mix(q) over the faces the point's cell lists (q behind
     // the face), and over the faces other cells list with the point behind them.
     std::vector<std::vector<uint64_t>> listed_, listed_back_;
@@ -248,6 +283,8 @@ class Engine : public EngineBase {
         out.volume.reserve(count);
         out.area.reserve(count);
         out.flags.reserve(count);
+        out.reach_up.reserve(count);
+        out.reach_down.reserve(count);
         FlatCell cell;
         std::vector<int> neighbors, loops;
         double volume, area;
@@ -263,6 +300,8 @@ class Engine : public EngineBase {
                 out.volume.push_back(0.0);
                 out.area.push_back(0.0);
                 out.flags.push_back(0);
+                out.reach_up.push_back(0.0);
+                out.reach_down.push_back(0.0);
                 continue;
             }
             // loops: per face its corner count, then its corners
@@ -299,7 +338,7 @@ class Engine : public EngineBase {
             for (int n : neighbors) {
                 if (n < 0) {
                     flag |= WALL;
-                } else {
+                } else if (n < owned_) {  // a margin point's face is checked across parts
                     listed[i] += mix(static_cast<uint64_t>(n));
                     listed_back[n] += self;
                 }
@@ -309,6 +348,11 @@ class Engine : public EngineBase {
             out.volume.push_back(volume);
             out.area.push_back(area);
             out.flags.push_back(flag);
+            double up, down;
+            const double own = radii_.empty() ? 0.0 : radii_[i];
+            cell.reach(reach_radius_squared_ - own * own, up, down);
+            out.reach_up.push_back(up);
+            out.reach_down.push_back(down);
         }
         return out;
     }
@@ -329,7 +373,8 @@ class Tessellation {
 
     Tessellation(Array points, std::optional<Array> radii, std::array<double, 6> box,
                  std::array<bool, 3> periodic, std::array<int, 3> blocks, int threads,
-                 std::optional<std::array<double, 3>> tilt) {
+                 std::optional<std::array<double, 3>> tilt, std::optional<int64_t> owned,
+                 double reach_radius) {
         if (points.ndim() != 2 || points.shape(1) != 3)
             throw std::invalid_argument("points must be an array of shape (n, 3)");
         const int64_t n = points.shape(0);
@@ -337,6 +382,9 @@ class Tessellation {
         if (radii && (radii->ndim() != 1 || radii->shape(0) != n))
             throw std::invalid_argument("radii must be an array of shape (n,)");
         if (threads < 1) throw std::invalid_argument("threads must be at least 1");
+        const int64_t mine = owned.value_or(n);
+        if (mine < 0 || mine > n) throw std::invalid_argument("owned must be from 0 to n");
+        if (!(reach_radius >= 0)) throw std::invalid_argument("reach_radius must be >= 0");
         for (int a = 0; a < 3; ++a) {
             if (!(box[2 * a] < box[2 * a + 1]))
                 throw std::invalid_argument("each side of the box must have low < high");
@@ -353,17 +401,17 @@ class Tessellation {
         if (tilt && r)
             engine_ = std::make_unique<
                 Engine<voro::container_periodic_poly, voro::c_loop_all_periodic>>(
-                xyz, r, n, geometry, threads);
+                xyz, r, n, geometry, threads, mine, reach_radius);
         else if (tilt)
             engine_ =
                 std::make_unique<Engine<voro::container_periodic, voro::c_loop_all_periodic>>(
-                    xyz, r, n, geometry, threads);
+                    xyz, r, n, geometry, threads, mine, reach_radius);
         else if (r)
             engine_ = std::make_unique<Engine<voro::container_poly, voro::c_loop_all>>(
-                xyz, r, n, geometry, threads);
+                xyz, r, n, geometry, threads, mine, reach_radius);
         else
             engine_ = std::make_unique<Engine<voro::container, voro::c_loop_all>>(
-                xyz, r, n, geometry, threads);
+                xyz, r, n, geometry, threads, mine, reach_radius);
     }
 
     py::array_t<int64_t> one_sided() const { return to_array(engine_->one_sided()); }
@@ -394,6 +442,8 @@ class Tessellation {
         result["volume"] = to_array(out.volume);
         result["area"] = to_array(out.area);
         result["flags"] = to_array(out.flags);
+        result["reach_up"] = to_array(out.reach_up);
+        result["reach_down"] = to_array(out.reach_down);
         return result;
     }
 
@@ -409,22 +459,26 @@ PYBIND11_MODULE(_voro, m) {
     py::class_<Tessellation>(m, "Tessellation")
         .def(py::init<Tessellation::Array, std::optional<Tessellation::Array>,
                       std::array<double, 6>, std::array<bool, 3>, std::array<int, 3>, int,
-                      std::optional<std::array<double, 3>>>(),
+                      std::optional<std::array<double, 3>>, std::optional<int64_t>, double>(),
              py::arg("points"), py::arg("radii"), py::arg("box"), py::arg("periodic"),
              py::arg("blocks"), py::arg("threads"), py::arg("tilt") = py::none(),
+             py::arg("owned") = py::none(), py::arg("reach_radius") = 0.0,
              "Points (n, 3) in a box (xlo, xhi, ylo, yhi, zlo, zhi), periodic per axis, cut "
              "into blocks per axis for Voro++'s search; radii (n,) or None; one container per "
              "thread. With tilt (xy, xz, yz), the box is the triclinic one with edges "
-             "(xhi, 0, 0), (xy, yhi, 0), (xz, yz, zhi) from 0, periodic on every side.")
+             "(xhi, 0, 0), (xy, yhi, 0), (xz, yz, zhi) from 0, periodic on every side. Points "
+             "from owned on are a margin of other parts' points: their faces are not checked "
+             "here. reach_radius: the largest radius of all points, those not held included.")
         .def("placed", &Tessellation::placed,
              "Per point: True where Voro++ placed it in the box.")
         .def("one_sided", &Tessellation::one_sided,
-             "The points whose cells list a face that the cell behind it does not list back "
-             "(once every cell is computed).")
+             "The owned points whose cells list a face that the cell behind it does not list "
+             "back (once every owned point's cell is computed).")
         .def("cells", &Tessellation::cells, py::arg("indices"),
              "The cells of the points at these indices, on every thread, as a dict of arrays: "
-             "face_counts, volume, area and flags (1: a corner not of three faces, 2: an edge not "
-             "on two faces, 4: a face on a wall) per cell (0 faces: no cell), loop_lengths and "
-             "neighbors (the point behind, negative for a wall) per face, adjacent (the face "
+             "face_counts, volume, area, flags (1: a corner not of three faces, 2: an edge not "
+             "on two faces, 4: a face on a wall), reach_up and reach_down (how far above and "
+             "below the point another point may change the cell) per cell (0 faces: no cell), "
+             "loop_lengths and neighbors (the point behind, negative for a wall) per face, adjacent (the face "
              "across each edge, counter-clockwise seen from outside) per edge of a face.");
 }

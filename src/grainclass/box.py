@@ -45,7 +45,14 @@ class Box:
 
     def fractions(self, xyz: np.ndarray) -> np.ndarray:
         """Points as fractions of the box's edges from ``low`` (0 to 1 inside)."""
+        if self.tilt is None:  # each axis on its own: (x - low) / length, as z_fractions has it
+            return (xyz - np.asarray(self.low)) / self.lengths
         return np.linalg.solve(self.matrix, (xyz - np.asarray(self.low)).T).T
+
+    def z_fractions(self, z: np.ndarray) -> np.ndarray:
+        """Heights as fractions of the box's height, as :meth:`fractions` gives them (the third
+        edge of a tilted box leans, but only it rises)."""
+        return (z - self.low[2]) / self.lengths[2]
 
     @classmethod
     def cube(cls, side: float, periodic: tuple[bool, bool, bool] = (True, True, True)) -> Box:

@@ -1,12 +1,12 @@
 """A Dask client: of a running cluster (a scheduler's address), or of a local cluster of
 worker processes started for the run and closed with it; what runs on more than one process
-(the census) runs on it."""
+(the census, tessellations and classifications in parts) runs on it, as :class:`Tasks`."""
 
 from __future__ import annotations
 
 import contextlib
 import logging
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from typing import TYPE_CHECKING
 
@@ -108,3 +108,77 @@ def dask_setup(worker: object) -> None:
     from grainclass.parallel import end_quietly_on_interrupt
 
     end_quietly_on_interrupt()
+
+
+class Tasks:
+    """Tasks of one run on a Dask cluster, each under a name, and their outcomes as each
+    finishes: its value, or the exception that ended it (a task whose workers died on every
+    try ends in Dask's ``KilledWorker``; one that died fewer times was run again elsewhere).
+
+    Keys carry a token of the run: on a shared scheduler, another run must not be handed this
+    one's results. Tasks left when the run ends (stopped, or failed) are cancelled.
+    """
+
+    def __init__(self, client: Client, prefix: str) -> None:
+        import uuid
+
+        self.client = client
+        self.prefix = f"{prefix}-{uuid.uuid4().hex[:12]}"
+        self._futures: dict = {}
+        self._tries: dict[str, int] = {}
+
+    def submit(self, name: str, function: Callable, *args: object, priority: int = 0) -> None:
+        """Run ``function(*args)`` as the task ``name`` (again, if it ran before: a new key)."""
+        tries = self._tries[name] = self._tries.get(name, 0) + 1
+        future = self.client.submit(
+            function, *args, key=f"{self.prefix}-{name}-{tries}", pure=False, priority=priority
+        )
+        self._futures[future] = name
+
+    def scatter(self, data: object) -> object:
+        """``data`` sent to a worker ahead of the task that takes it: a future to pass it by
+        (arguments of many megabytes would go through the scheduler in the task itself)."""
+        return self.client.scatter(data, hash=False)
+
+    def __len__(self) -> int:
+        return len(self._futures)
+
+    def finished(self, tick: Callable[[], None] | None = None) -> Iterator[tuple[str, object]]:
+        """``(name, value or exception)`` of each task as it finishes, tasks submitted meanwhile
+        included; a stop asked for is raised between them, and ``tick`` is called at least
+        every half second."""
+        from distributed import wait
+
+        from grainclass import interrupts
+
+        try:
+            while self._futures:
+                interrupts.checkpoint()
+                try:
+                    done, _ = wait(list(self._futures), timeout=0.5, return_when="FIRST_COMPLETED")
+                except TimeoutError:
+                    done = set()
+                for future in done:
+                    name = self._futures.pop(future)
+                    try:
+                        value: object = future.result()
+                    except Exception as exc:  # the run reports it, naming the task
+                        value = exc
+                    finally:
+                        future.release()
+                    yield name, value
+                if tick is not None:
+                    tick()
+        finally:
+            if self._futures:
+                self.client.cancel(list(self._futures))
+                self._futures.clear()
+
+
+def task_failure(name: str, error: BaseException) -> str:
+    """What ended task ``name``, in words: a worker that died on every try is said so."""
+    from distributed import KilledWorker
+
+    if isinstance(error, KilledWorker):
+        return f"{name}: every worker that ran it died (out of memory, or killed): {error}"
+    return f"{name}: {error}"

@@ -138,16 +138,17 @@ def write_grains(
     output: str,
     options: ReadOptions | None = None,
     watch: Watch = _unwatched,
+    metadata: dict[str, str] | None = None,
     **settings: Any,
 ) -> Written:
     """Classify every grain of the inputs into the per-grain Parquet file ``output`` (``-``:
-    standard output), written whole or not at all."""
+    standard output), written whole or not at all, with ``metadata`` added to the file's."""
     from grainclass.parquet import GrainTableWriter
     from grainclass.pipeline import classified_tables
 
     options = ReadOptions.of(options, **settings)
     statuses: dict[str, int] = {}
-    with _jobs(options), GrainTableWriter(output) as writer:
+    with _jobs(options), GrainTableWriter(output, metadata) as writer:
         for table in watch(classified_tables(_paths(paths), options)):
             for item in table.column("status").value_counts().to_pylist():
                 statuses[item["values"]] = statuses.get(item["values"], 0) + item["counts"]

@@ -18,6 +18,7 @@ import contextlib
 import itertools
 import os
 import signal
+import sys
 import threading
 from collections.abc import Callable, Iterable, Iterator
 from concurrent.futures import Future, ThreadPoolExecutor
@@ -171,4 +172,9 @@ def end_quietly_on_interrupt(*_: object) -> None:
 
 
 def _end_quietly(signum: int, frame: object) -> None:
+    # A part it was writing (a data set in parts) is not left half-made. Nothing is imported
+    # here: the signal may come while the process imports, holding the locks an import takes.
+    atomic = sys.modules.get("grainclass.atomic")
+    if atomic is not None:
+        atomic.remove_temporaries()
     os._exit(128 + signum)

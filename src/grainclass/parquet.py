@@ -55,10 +55,13 @@ class GrainTableWriter:
     ----------
     path : str
         The file to write, or ``-`` for standard output (refused when that is a terminal).
+    metadata : dict of str to str, optional
+        Added to the file's key-value metadata (a part's identity, :mod:`grainclass.parts`).
     """
 
-    def __init__(self, path: str) -> None:
+    def __init__(self, path: str, metadata: dict[str, str] | None = None) -> None:
         self.path = path
+        self.metadata = metadata or {}
         self.rows = 0
         self.dropped: set[str] = set()
         self._writer: pq.ParquetWriter | None = None
@@ -87,6 +90,8 @@ class GrainTableWriter:
         self.rows += len(table)
 
     def _open(self, schema: pa.Schema) -> None:
+        if self.metadata:
+            schema = schema.with_metadata({**(schema.metadata or {}), **self.metadata})
         self._schema = schema
         # Grain ids are unique: a dictionary for them only grows until Parquet gives it up, at
         # a large cost to the writing (all other columns keep theirs).

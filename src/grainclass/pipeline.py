@@ -123,17 +123,28 @@ def input_runs(paths: Sequence[str]) -> Iterator[tuple[bool, list[str]]]:
     """The inputs (a folder stands for its Parquet or ``*.fe`` files) as runs: each
     per-grain Parquet table alone ``(True, [path])``, consecutive inputs of grains together
     ``(False, paths)``, to be read as one stream."""
-    raw: list[str] = []
-    for path in expand_paths(paths):
-        if is_parquet(path):
-            if raw:
-                yield False, raw
-                raw = []
-            yield True, [path]
+    for parquet, group in parquet_runs(paths):
+        if parquet:
+            for path in group:
+                yield True, [path]
         else:
-            raw.append(path)
-    if raw:
-        yield False, raw
+            yield False, group
+
+
+def parquet_runs(paths: Sequence[str]) -> Iterator[tuple[bool, list[str]]]:
+    """The inputs as runs of consecutive per-grain Parquet tables ``(True, paths)`` (the parts
+    of a data set, say) and of consecutive inputs of grains ``(False, paths)``."""
+    run: list[str] = []
+    kind = None
+    for path in expand_paths(paths):
+        parquet = is_parquet(path)
+        if run and parquet != kind:
+            yield bool(kind), run
+            run = []
+        kind = parquet
+        run.append(path)
+    if run:
+        yield bool(kind), run
 
 
 def _require_belts(path: str, table: pa.Table, longest: int) -> None:
@@ -181,13 +192,24 @@ def tallies(paths: Sequence[str], options: ReadOptions) -> Iterator[Tally]:
 
     length = options.split_length
     by_length = length != SHORTEST_BELT
-    for parquet, group in input_runs(paths):
+    columns = [*COLUMNS, SPLITS] if by_length else COLUMNS
+
+    def row_groups(group: list[str]) -> Iterator[tuple[str, pa.Table]]:
+        for path in group:
+            for table in iter_grain_tables(path, columns):
+                yield path, table
+
+    def tally(item: tuple[str, pa.Table]) -> Tally:
+        path, table = item
+        if by_length:
+            _require_belts(path, table, length)
+        return tally_table(table, options.include_boundary, length)
+
+    for parquet, group in parquet_runs(paths):
         if parquet:
-            columns = [*COLUMNS, SPLITS] if by_length else COLUMNS
-            for table in iter_grain_tables(group[0], columns):
-                if by_length:
-                    _require_belts(group[0], table, length)
-                yield tally_table(table, options.include_boundary, length)
+            # The row groups of a run of tables (a data set's parts) are read in one thread
+            # and tallied on every thread, in order; memory holds a row group per thread.
+            yield from map_ordered(tally, prefetch(row_groups(group)))
             continue
         # The Weinberg walks and the belts need the CSR lists; counting alone reads planar_code
         # as bytes.

@@ -296,11 +296,16 @@ def _counts(
 
 
 def _distinct(hashes: list[np.ndarray]) -> int:
-    """Distinct values among the hash arrays, which are emptied (they can hold a 64-bit hash
-    per grain of a whole enumeration: joined and sorted in place, never copied twice)."""
+    """Distinct values among the hash arrays, which are emptied."""
+    return len(_deduplicated(hashes))
+
+
+def _deduplicated(hashes: list[np.ndarray]) -> np.ndarray:
+    """The distinct values among the hash arrays, which are emptied (they can hold a 64-bit
+    hash per grain of a whole enumeration: joined and sorted in place, never copied twice)."""
     joined = np.empty(sum(h.size for h in hashes), np.uint64)
     if not joined.size:
-        return 0
+        return joined
     at = 0
     hashes.reverse()
     while hashes:
@@ -308,7 +313,13 @@ def _distinct(hashes: list[np.ndarray]) -> int:
         joined[at : at + part.size] = part
         at += part.size
     joined.sort()
-    return int(1 + np.count_nonzero(joined[1:] != joined[:-1]))
+    first = np.empty(joined.size, bool)
+    first[0] = True
+    np.not_equal(joined[1:], joined[:-1], out=first[1:])
+    return joined[first]
+
+
+MERGE_EVERY = 64  # tallies (and arrays of type hashes) held before they are merged
 
 
 def merge_tallies(tallies: list[pd.DataFrame]) -> pd.DataFrame:
@@ -480,12 +491,21 @@ def summarize(
     """
     items = [grains] if isinstance(grains, pa.Table) else grains
     frames, hashes, excluded, typed = [], [], 0, True
+    held = 0  # hashes held, the distinct ones of the last merge included
     for item in items:
         part = item if isinstance(item, Tally) else tally_table(item, include_boundary, belt_length)
         frames.append(part.counts)
         hashes.append(part.type_hashes)
+        held += part.type_hashes.size
         excluded += part.boundary_excluded
         typed &= part.typed
+        # A long stream (a data set of millions of grains in thousands of row groups) is held
+        # as its tallies so far and its distinct hashes, not as every batch's.
+        if len(frames) >= MERGE_EVERY:
+            frames = [merge_tallies(frames)]
+        if len(hashes) >= MERGE_EVERY and held > hashes[0].size * 5 // 4:
+            hashes = [_deduplicated(hashes)]
+            held = hashes[0].size
     counts = merge_tallies(frames)
     # Distinct types are known only if every part knows its grains' types: a count over some
     # would pass for the whole.

@@ -56,7 +56,9 @@ class VoronoiReport:
     one_sided: list[str] = field(default_factory=list)  # the ids of those cells' points
     volume: float = 0.0
     boundary: int = 0  # cells with a face on a wall of the box
-    no_cell: list[str] = field(default_factory=list)  # points without a cell (Laguerre)
+    no_cells: int = 0  # points without a cell (Laguerre)
+    no_cell: list[str] = field(default_factory=list)  # their ids (of a part: the first few)
+    unmatched_parts: list[tuple[int, int]] = field(default_factory=list)  # see voronoi_parts
 
     def problems(self, box_volume: float, simple: bool = True, weighted: bool = False) -> list[str]:
         """What the checks found wrong with a tessellation of a box of volume ``box_volume``:
@@ -66,8 +68,8 @@ class VoronoiReport:
         ``weighted`` (a Laguerre tessellation, where a point may be hidden), every point must
         have a cell."""
         found = []
-        if not weighted and self.no_cell:
-            found.append(f"{plural(len(self.no_cell), 'point')} without a cell")
+        if not weighted and self.no_cells:
+            found.append(f"{plural(self.no_cells, 'point')} without a cell")
         if simple and self.bad_corners:
             found.append(f"{plural(self.bad_corners, 'cell')} with a corner not of three faces")
         if self.one_sided_faces:
@@ -76,6 +78,8 @@ class VoronoiReport:
                 f"{plural(self.one_sided_faces, 'cell')} with a face seen from one side only"
                 + (f" (points {ids})" if ids else "")
             )
+        for a, b in self.unmatched_parts:
+            found.append(f"faces between parts {a} and {b} seen from one side only")
         if abs(self.volume - box_volume) > 1e-9 * box_volume:
             found.append(f"the cells' volume is {self.volume:.12g}, the box's {box_volume:.12g}")
         return found
@@ -133,14 +137,21 @@ def _blocks(n: int, box: Box) -> np.ndarray:
     return np.maximum(1, np.round(box.lengths / length)).astype(np.int64)
 
 
-def block_order(xyz: np.ndarray, box: Box) -> np.ndarray:
-    """The order in which the cells of points ``xyz`` are computed: by Voro++'s blocks, x
-    fastest, then y, then z (stable: points of one block in their given order)."""
-    blocks = _blocks(len(xyz), box)
-    cell = np.floor(box.fractions(xyz) * blocks).astype(np.int64)
-    cell = np.where(box.periodic, cell % blocks, np.clip(cell, 0, blocks - 1))
+def block_order(xyz: np.ndarray, box: Box, blocks: np.ndarray | None = None) -> np.ndarray:
+    """The order in which the cells of points ``xyz`` are computed: by Voro++'s blocks (those
+    of ``len(xyz)`` points unless ``blocks`` is given), x fastest, then y, then z (stable:
+    points of one block in their given order)."""
+    blocks = _blocks(len(xyz), box) if blocks is None else blocks
+    cell = block_cells(xyz, box, blocks)
     key = (cell[:, 2] * blocks[1] + cell[:, 1]) * blocks[0] + cell[:, 0]
     return np.argsort(key, kind="stable")
+
+
+def block_cells(xyz: np.ndarray, box: Box, blocks: np.ndarray) -> np.ndarray:
+    """The block of each point, per axis (int64[n, 3]): periodic axes wrapped, walled ones
+    clipped."""
+    cell = np.floor(box.fractions(xyz) * blocks).astype(np.int64)
+    return np.where(box.periodic, cell % blocks, np.clip(cell, 0, blocks - 1))
 
 
 def check_points(points: Points, box: Box) -> None:
@@ -244,14 +255,36 @@ def tessellate(
     A point whose Laguerre cell is empty (hidden by its neighbours' radii) has no grain; its id
     goes to ``report.no_cell``.
     """
-    from grainclass.parallel import get_jobs
-
-    _voro = voro_engine()
     report = report if report is not None else VoronoiReport()
     if not checked:
         check_points(points, box)
+    engine, scale = make_engine(points, box)
+    order = np.arange(len(points.xyz)) if ordered else block_order(points.xyz, box)
+    for cells, raw in computed_cells(engine, order, chunk_size):
+        batch = cells_batch(points, cells, raw, scale, report)
+        if len(batch):
+            yield batch
+    one_sided = engine.one_sided()
+    report.one_sided_faces += len(one_sided)
+    report.one_sided.extend(str(i) for i in points.ids[one_sided])
+
+
+def make_engine(
+    points: Points,
+    box: Box,
+    scale: float | None = None,
+    owned: int | None = None,
+    reach_radius: float = 0.0,
+):
+    """The Voro++ engine (``grainclass._voro.Tessellation``) of ``points`` in ``box``, scaled by
+    ``scale`` (default: :func:`_scale` of the box and the points), and the scale. Points from
+    ``owned`` on are a margin of other parts' points (``grainclass.voronoi_parts``), whose radii
+    reach at most ``reach_radius`` (of the box's units)."""
+    from grainclass.parallel import get_jobs
+
+    _voro = voro_engine()
     n = len(points.xyz)
-    scale = _scale(box, n)
+    scale = _scale(box, n) if scale is None else scale
     low, high = tuple(v * scale for v in box.low), tuple(v * scale for v in box.high)
     xyz, tilt = points.xyz * scale, None
     # Voro++ places a point at low <= x < high; a point on the upper wall (a LAMMPS box shrunk
@@ -271,9 +304,18 @@ def tessellate(
         tuple(int(b) for b in _blocks(n, box)),
         min(get_jobs(), max(1, n // 1000)),
         tilt,
+        owned,
+        reach_radius * scale,
     )
-    order = np.arange(n) if ordered else block_order(points.xyz, box)
-    chunks = [order[a : a + chunk_size] for a in range(0, n, chunk_size)]
+    return engine, scale
+
+
+def computed_cells(engine, order: np.ndarray, chunk_size: int) -> Iterator[tuple[np.ndarray, dict]]:
+    """The cells of the points ``order`` (indices), ``chunk_size`` at a time: each chunk's
+    indices and the engine's arrays for them."""
+    chunks = [order[a : a + chunk_size] for a in range(0, len(order), chunk_size)]
+    if not chunks:
+        return
     # The next chunk's cells are computed (without the GIL) while this chunk's grains are
     # classified and written: one engine call at a time, one chunk ahead.
     with ThreadPoolExecutor(1, thread_name_prefix="grainclass-voro") as ahead:
@@ -282,15 +324,10 @@ def tessellate(
             raw = pending.result()
             if k + 1 < len(chunks):
                 pending = ahead.submit(engine.cells, chunks[k + 1])
-            batch = _batch(points, cells, raw, scale, report)
-            if len(batch):
-                yield batch
-    one_sided = engine.one_sided()
-    report.one_sided_faces += len(one_sided)
-    report.one_sided.extend(str(i) for i in points.ids[one_sided])
+            yield cells, raw
 
 
-def _batch(
+def cells_batch(
     points: Points, cells: np.ndarray, raw: dict, scale: float, report: VoronoiReport
 ) -> GrainBatch:
     """The grains of the points ``cells`` (indices into ``points``), from the engine's arrays
@@ -300,6 +337,7 @@ def _batch(
     face_counts = raw["face_counts"].astype(np.int64)
     has_cell = face_counts > 0
     if not has_cell.all():
+        report.no_cells += int((~has_cell).sum())
         report.no_cell.extend(str(points.ids[i]) for i in cells[~has_cell])
         cells, face_counts = cells[has_cell], face_counts[has_cell]
     flags = raw["flags"][has_cell]

@@ -10,23 +10,6 @@ from grainclass.cli import errors, exit_codes, options, startup
 from grainclass.options import DEFAULT_CHUNK_SIZE, MAX_CHUNK_SIZE
 
 
-def _directory(ctx: click.Context, param: click.Parameter, value: str) -> str:
-    import os
-
-    options.nonempty_path(ctx, param, value)
-    if value == "-":
-        raise click.BadParameter("a census is written into a directory, not to standard output")
-    if os.path.exists(value) and not os.path.isdir(value):
-        raise click.BadParameter(f"{value!r} is not a directory")
-    return value
-
-
-def _address(ctx: click.Context, param: click.Parameter, value: str | None) -> str | None:
-    if value is not None and not value.strip():
-        raise click.BadParameter("an empty address names no scheduler")
-    return value
-
-
 @click.command("census", cls=errors.Command, epilog=exit_codes.CENSUS)
 @click.argument("n_values", nargs=-1, required=True, metavar="N...", callback=options.vertex_counts)
 @click.option(
@@ -34,7 +17,7 @@ def _address(ctx: click.Context, param: click.Parameter, value: str | None) -> s
     "--output",
     required=True,
     metavar="DIR",
-    callback=_directory,
+    callback=options.output_folder,
     help="Census directory: checkpoints, then the tables (Parquet and CSV) and provenance.json.",
 )
 @click.option(
@@ -44,18 +27,7 @@ def _address(ctx: click.Context, param: click.Parameter, value: str | None) -> s
     show_default=True,
     help="Tasks per N (plantri's res/mod); a rerun must give the same number to resume.",
 )
-@click.option(
-    "--scheduler",
-    metavar="ADDRESS",
-    callback=_address,
-    help="Run on an existing Dask cluster (tcp://host:port) instead of a local one.",
-)
-@click.option(
-    "--workers",
-    type=click.IntRange(1, 4096),
-    help="Worker processes of the local cluster, up to four per CPU this process may use "
-    "(default: one per CPU).",
-)
+@options.cluster("the parts")
 @click.option(
     "--chunk-size",
     type=click.IntRange(min=1, max=MAX_CHUNK_SIZE),
@@ -89,7 +61,7 @@ def census_cmd(
     Needs the census extra: pip install 'grainclass[census]'.
     """
     from grainclass.census import run_census
-    from grainclass.cli.progress import CensusPrinter
+    from grainclass.cli.progress import PartsPrinter
     from grainclass.cluster import dask_client, require_dask
 
     startup.resume_collection()
@@ -106,7 +78,7 @@ def census_cmd(
             client,
             chunk_size,
             plantri,
-            report=None if quiet else CensusPrinter(),
+            report=None if quiet else PartsPrinter(),
         )
     _report(result, output, quiet)
 

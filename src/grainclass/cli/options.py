@@ -108,6 +108,54 @@ def figure_output() -> Callable[[F], F]:
     )
 
 
+def output_folder(ctx: click.Context, param: click.Parameter, value: str | None) -> str | None:
+    """A folder to write into (a census, a data set in parts): neither ``-`` nor a file."""
+    import os
+
+    nonempty_path(ctx, param, value)
+    if value == "-":
+        raise click.BadParameter("this is written into a folder, not to standard output")
+    bare = value.rstrip("/" + os.sep) or value if value is not None else None
+    if bare is not None and os.path.lexists(bare) and not os.path.isdir(bare):
+        raise click.BadParameter(f"{value!r} is not a folder")
+    return value
+
+
+def is_folder(path: str) -> bool:
+    """Whether an output names a folder to write a data set in parts into: a path that ends with
+    ``/`` (a folder named without it stays an output file that cannot be written, as before)."""
+    import os
+
+    return path.endswith(("/", os.sep))
+
+
+def _address(ctx: click.Context, param: click.Parameter, value: str | None) -> str | None:
+    if value is not None and not value.strip():
+        raise click.BadParameter("an empty address names no scheduler")
+    return value
+
+
+def cluster(what: str) -> Callable[[F], F]:
+    """``--scheduler ADDRESS`` and ``--workers N``: where the Dask tasks of ``what`` run."""
+    return _stack(
+        [
+            click.option(
+                "--scheduler",
+                metavar="ADDRESS",
+                callback=_address,
+                help=f"Run {what} on an existing Dask cluster (tcp://host:port) instead of a "
+                "local one.",
+            ),
+            click.option(
+                "--workers",
+                type=click.IntRange(1, 4096),
+                help="Worker processes of the local cluster, up to four per CPU this process "
+                "may use (default: one per CPU).",
+            ),
+        ]
+    )
+
+
 def vertex_counts(ctx: click.Context, param: click.Parameter, values: tuple[str, ...]) -> list[int]:
     """N arguments: numbers of vertices, or ranges ``A..B`` (both ends included)."""
     ns: list[int] = []

@@ -1,18 +1,19 @@
 """Progress on standard error: grains and grains per second while a command reads, parts and
-time left while a census runs."""
+time left while a census or a data set in parts runs."""
 
 from __future__ import annotations
 
 import math
 import sys
 import time
-from collections.abc import Iterable, Iterator
+from collections.abc import Callable, Iterable, Iterator
 from typing import TYPE_CHECKING, TypeVar
 
 from grainclass import interrupts
 
 if TYPE_CHECKING:
     from grainclass.census import CensusProgress
+    from grainclass.parts import PartsProgress
 
 T = TypeVar("T")
 
@@ -63,23 +64,37 @@ def census_line(progress: CensusProgress) -> str:
     )
 
 
-class CensusPrinter:
-    """A census's progress: redrawn in place on a terminal; elsewhere (a log file) a line at
-    most every ``every`` seconds, and one when the last part is in."""
+def parts_line(command: str, unit: str) -> Callable[[PartsProgress], str]:
+    """The progress line of ``command`` writing a data set in parts of ``unit``s (``cells``)."""
 
-    def __init__(self, every: float = 10.0) -> None:
+    def line(progress: PartsProgress) -> str:
+        return (
+            f"{command}: {progress.done}/{progress.total} parts, {progress.grains:,} {unit} "
+            f"({progress.rate:,.0f}/s), about {format_seconds(progress.seconds_left)} left"
+        )
+
+    return line
+
+
+class PartsPrinter:
+    """The progress of a run in parts (a census, a data set): redrawn in place on a terminal;
+    elsewhere (a log file) a line at most every ``every`` seconds, and one when the last part
+    is in. ``line`` words it (default: a census's)."""
+
+    def __init__(self, every: float = 10.0, line: Callable = census_line) -> None:
         self.every = every
+        self.line = line
         self._printed = -math.inf
         self._ended = False
 
-    def __call__(self, progress: CensusProgress) -> None:
+    def __call__(self, progress: CensusProgress | PartsProgress) -> None:
         last = progress.done == progress.total
         if self._ended:
             return
         self._ended = last
         if sys.stderr.isatty():
-            sys.stderr.write("\r" + census_line(progress) + "\033[K" + ("\n" if last else ""))
+            sys.stderr.write("\r" + self.line(progress) + "\033[K" + ("\n" if last else ""))
         elif last or time.monotonic() - self._printed >= self.every:
-            sys.stderr.write(census_line(progress) + "\n")
+            sys.stderr.write(self.line(progress) + "\n")
             self._printed = time.monotonic()
         sys.stderr.flush()

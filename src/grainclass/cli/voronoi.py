@@ -83,15 +83,24 @@ def periodic_axes(ctx: click.Context, param: click.Parameter, value: str | None)
     "-o",
     "--output",
     required=True,
-    metavar="FILE",
+    metavar="FILE|DIR/",
     callback=options.nonempty_path,
-    help="Adjacency text with volume= and area= per grain; *.parquet: classified grains.",
+    help="Adjacency text with volume= and area= per grain; *.parquet: classified grains; a "
+    "folder (DIR/, with its /): classified grains in parts, on Dask.",
 )
+@click.option(
+    "--parts",
+    type=click.IntRange(1, 1_000_000),
+    help="Slabs along z, each a Dask task and a file of the folder -o DIR/ (default: one per "
+    "million cells, at least one per worker). Any number gives the same cells.",
+)
+@options.cluster("the parts")
 @click.option(
     "-j",
     "--jobs",
     type=click.IntRange(min=1, max=1 << 16),
-    help="Threads that compute the cells (default: the CPUs this process may use).",
+    help="Threads that compute the cells (default: the CPUs this process may use); in parts, "
+    "each task has one.",
 )
 @click.option(
     "-q", "--quiet", is_flag=True, help="No report on stderr.", callback=startup.note_quiet
@@ -105,6 +114,9 @@ def voronoi_cmd(
     box,
     periodic,
     output: str,
+    parts: int | None,
+    scheduler: str | None,
+    workers: int | None,
     jobs: int | None,
     quiet: bool,
 ) -> None:
@@ -116,6 +128,11 @@ def voronoi_cmd(
     with a face on a side of the box that is not periodic are boundary grains. Every cell is
     checked (every face seen from both sides, the cells filling the box; for random seeds, also
     three faces at each corner); a failed check exits 1.
+
+    With -o DIR/ the box is cut into slabs along z, each computed by a Dask task (a local
+    cluster, or --scheduler) with a margin of its neighbours' points, widened where a cell
+    reaches past it, into DIR/part-00000.parquet, ...; running the same command again keeps
+    the parts already done. Needs the census extra: pip install 'grainclass[census]'.
     """
     if (n_seeds is None) == (points_path is None):
         raise click.UsageError("give either N (random seeds) or --points FILE, not both")
@@ -123,10 +140,21 @@ def voronoi_cmd(
         raise click.UsageError("--radius-column and --points-format go with --points")
     if points_path is not None and seed is not None:
         raise click.UsageError("--seed goes with N random seeds, not with --points")
+    folder = options.is_folder(output)
+    if not folder and (parts is not None or scheduler is not None or workers is not None):
+        raise click.UsageError("--parts, --scheduler and --workers write a folder: give -o DIR/")
+    if folder and jobs is not None:
+        raise click.UsageError("-j/--jobs goes with one output file: in parts, --workers")
     from grainclass import voronoi
     from grainclass.atomic import refuse_inputs
 
     refuse_inputs([output], [points_path] if points_path else [])
+    if folder:
+        from grainclass.cluster import require_dask
+        from grainclass.parts import check_output_folder
+
+        check_output_folder(output)
+        require_dask()
     voronoi.voro_engine()  # installed without Voro++: say so before reading the points
     if jobs is not None:
         from grainclass.parallel import set_jobs
@@ -141,6 +169,11 @@ def voronoi_cmd(
         if progress.enabled:
             click.echo(f"tessellating {n_seeds:,} seeds with Voro++ ...", err=True)
         side = float(the_box.high[0])
+        if folder:
+            _in_parts(
+                output, parts, scheduler, workers, quiet, n_seeds=n_seeds, seed=seed, side=side
+            )
+            return
         batches = voronoi.poisson_voronoi(n_seeds, seed, side, report=report)
     else:
         from grainclass.readers.points import read_points
@@ -150,6 +183,9 @@ def voronoi_cmd(
         the_box = voronoi.points_box(points, box, periodic)
         voronoi.check_points(points, the_box)
         weighted = points.radii is not None
+        if folder:
+            _in_parts(output, parts, scheduler, workers, quiet, points=points, box=the_box)
+            return
         if progress.enabled:
             kind = "Laguerre" if weighted else "Voronoi"
             click.echo(
@@ -165,17 +201,76 @@ def voronoi_cmd(
             f"side: {report.one_sided_faces}",
             err=True,
         )
-    if report.no_cell and (weighted or not quiet):
-        shown = ", ".join(report.no_cell[:10]) + (" ..." if len(report.no_cell) > 10 else "")
+    _report_problems(report, the_box.volume, output, points_path is None, weighted, quiet)
+
+
+def _report_problems(
+    report, box_volume: float, output: str, simple: bool, weighted: bool, quiet: bool
+) -> None:
+    """Points without a cell on standard error; a failed check exits 1."""
+    if report.no_cells and (weighted or not quiet):
+        shown = ", ".join(report.no_cell[:10]) + (" ..." if report.no_cells > 10 else "")
         why = " (hidden by their neighbours' radii)" if weighted else ""
         click.echo(
-            f"grainclass: {plural(len(report.no_cell), 'point')} without a cell{why}, so "
+            f"grainclass: {plural(report.no_cells, 'point')} without a cell{why}, so "
             f"without a grain: {shown}",
             err=True,
         )
-    problems = report.problems(the_box.volume, simple=points_path is None, weighted=weighted)
+    problems = report.problems(box_volume, simple=simple, weighted=weighted)
     if problems:
         raise click.ClickException(
             f"the tessellation failed its checks ({'; '.join(problems)}); {output} is written, "
             "but its grains are not those of the points' Voronoi tessellation"
         )
+
+
+def _in_parts(
+    output: str,
+    parts: int | None,
+    scheduler: str | None,
+    workers: int | None,
+    quiet: bool,
+    **what,
+) -> None:
+    """The tessellation as a data set in parts on Dask (``what``: the seeds or the points)."""
+    from grainclass.box import Box
+    from grainclass.cli.progress import PartsPrinter, parts_line
+    from grainclass.cluster import dask_client
+    from grainclass.parts import remove_part_temporaries
+    from grainclass.voronoi_parts import Slabs, default_parts, tessellate_in_parts
+
+    points = what.get("points")
+    n = len(points.xyz) if points is not None else what["n_seeds"]
+    if parts is not None:  # before a cluster starts
+        Slabs(what.get("box") or Box.cube(what.get("side", 1.0)), n, parts)
+    try:
+        with dask_client(scheduler, workers) as client:
+            if parts is None:
+                parts = default_parts(n, sum(client.nthreads().values()))
+            if not quiet:
+                click.echo(f"tessellating {n:,} points in {parts} parts on Dask ...", err=True)
+            printer = None if quiet else PartsPrinter(line=parts_line("voronoi", "cells"))
+            result = tessellate_in_parts(output, client, parts, report=printer, **what)
+    finally:  # the temporary files of parts that stopped with the workers
+        remove_part_temporaries(output)
+    report = result.report
+    if not quiet:
+        widened = f"; margins widened in {len(result.widened)}" if result.widened else ""
+        click.echo(
+            f"grainclass: {plural(report.cells, 'cell')} in {plural(result.parts, 'part')} "
+            f"({result.computed} computed now, {result.skipped} from earlier runs{widened}) in "
+            f"{result.seconds:.1f} s, volume {report.volume:.12g} (box {result.box.volume:.12g}); "
+            f"boundary cells: {report.boundary}; cells with a corner not of three faces: "
+            f"{report.bad_corners}; cells with a face seen from one side: "
+            f"{report.one_sided_faces}",
+            err=True,
+        )
+    for failure in result.failures:
+        click.echo(f"grainclass: failed: {failure}", err=True)
+    if result.failures:
+        raise click.ClickException(
+            f"{plural(len(result.failures), 'part')} failed; finished parts are kept in "
+            f"{output}: run the same command again to compute the rest"
+        )
+    weighted = points is not None and points.radii is not None
+    _report_problems(report, result.box.volume, output, points is None, weighted, quiet)

@@ -25,11 +25,15 @@ from grainclass.readers.sniffing import SNIFF_BYTES
 
 
 def expand_paths(paths: Sequence[str]) -> list[str]:
-    """A folder stands for its per-grain Parquet files (a data set written in parts) or else
-    its ``*.fe`` files (one grain-growth dump), in name order."""
+    """A folder stands for its per-grain Parquet files (a data set written in parts, which must
+    be whole: :func:`grainclass.parts.require_complete`) or else its ``*.fe`` files (one
+    grain-growth dump), in name order."""
+    from grainclass.parts import require_complete
+
     expanded = []
     for path in paths:
         if path != "-" and os.path.isdir(path):
+            require_complete(path)
             names = sorted(os.listdir(path))
             files = [f for f in names if f.lower().endswith(".parquet")]
             files = files or [f for f in names if f.lower().endswith(".fe")]
