@@ -110,7 +110,7 @@ def test_cells_cut_short_by_a_margin_fail_the_checks_across_parts(tmp_path, monk
             margin=0.1 * slabs.spacing,
             path=str(tmp_path / f"part-{k}.parquet"),
             identity={},
-            scale=voronoi._scale(slabs.box, 3000),
+            scale=voronoi.cell_scale(slabs.box, 3000),
             seed=5,
             source="voronoi:3000:5",
         )
