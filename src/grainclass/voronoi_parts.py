@@ -289,6 +289,7 @@ def tessellate_in_parts(
     side: float = 1.0,
     points: Points | None = None,
     box: Box | None = None,
+    checked: bool = False,
     chunk_size: int = DEFAULT_CHUNK_SIZE,
     margin: float = MARGIN,
     report: Callable[[PartsProgress], None] | None = None,
@@ -311,7 +312,8 @@ def tessellate_in_parts(
         unfinished data set of the same seeds in ``directory`` is resumed with its own), the
         cube's side.
     points, box : Points, Box
-        Points instead, in their box (checked here: :func:`grainclass.voronoi.check_points`).
+        Points instead, in their box (checked here, :func:`grainclass.voronoi.check_points`,
+        unless ``checked``: the caller did it).
     margin : float
         The first margin, in mean spacings of the points.
     report : callable, optional
@@ -345,7 +347,8 @@ def tessellate_in_parts(
     else:
         if box is None:
             raise OptionError("box", "points are tessellated in a box: give it")
-        check_points(points, box)
+        if not checked:
+            check_points(points, box)
         n = len(points.xyz)
         identity = {
             "command": "voronoi",
