@@ -110,7 +110,7 @@ def test_cells_cut_short_by_a_margin_fail_the_checks_across_parts(tmp_path, monk
             margin=0.1 * slabs.spacing,
             path=str(tmp_path / f"part-{k}.parquet"),
             identity={},
-            scale=voronoi._scale(slabs.box, 3000),
+            scale=voronoi.cell_scale(slabs.box, 3000),
             seed=5,
             source="voronoi:3000:5",
         )
@@ -288,3 +288,14 @@ def test_ctrl_c_keeps_finished_parts_and_leaves_no_temporary(tmp_path):
     )
     assert summarized.returncode == 1
     assert "an unfinished data set" in summarized.stderr
+
+
+def test_bad_points_fail_before_a_cluster_starts_and_write_nothing(tmp_path):
+    points = tmp_path / "points.txt"  # Voro++'s input: id x y z
+    points.write_text("1 0.1 0.2 0.3\n2 0.6 0.7 0.8\n3 0.1 0.2 0.3\n")
+    result = CliRunner().invoke(
+        cli, ["voronoi", "--points", str(points), "--parts", "1", "-o", f"{tmp_path}/out/"]
+    )
+    assert result.exit_code == 1
+    assert "point 3 is at the same place as point 1" in result.stderr
+    assert not (tmp_path / "out").exists()

@@ -123,7 +123,7 @@ def poisson_voronoi(
     yield from tessellate(points, cube, chunk_size=chunk_size, report=report, ordered=True)
 
 
-def _scale(box: Box, n: int) -> float:
+def cell_scale(box: Box, n: int) -> float:
     """A power of two that takes the mean cell of ``n`` points in ``box`` to a volume of about
     1. Voro++'s tolerances are absolute (1e-11 on squared lengths), made for cells of about
     that size: in much larger ones its rounding errors outgrow them, and points in degenerate
@@ -131,7 +131,7 @@ def _scale(box: Box, n: int) -> float:
     return 2.0 ** round(math.log2((n / box.volume) ** (1 / 3)))
 
 
-def _blocks(n: int, box: Box) -> np.ndarray:
+def search_blocks(n: int, box: Box) -> np.ndarray:
     """Voro++'s search blocks per axis: about POINTS_PER_BLOCK points each."""
     length = (box.volume * POINTS_PER_BLOCK / n) ** (1 / 3)
     return np.maximum(1, np.round(box.lengths / length)).astype(np.int64)
@@ -141,7 +141,7 @@ def block_order(xyz: np.ndarray, box: Box, blocks: np.ndarray | None = None) -> 
     """The order in which the cells of points ``xyz`` are computed: by Voro++'s blocks (those
     of ``len(xyz)`` points unless ``blocks`` is given), x fastest, then y, then z (stable:
     points of one block in their given order)."""
-    blocks = _blocks(len(xyz), box) if blocks is None else blocks
+    blocks = search_blocks(len(xyz), box) if blocks is None else blocks
     cell = block_cells(xyz, box, blocks)
     key = (cell[:, 2] * blocks[1] + cell[:, 1]) * blocks[0] + cell[:, 0]
     return np.argsort(key, kind="stable")
@@ -179,7 +179,7 @@ def check_points(points: Points, box: Box) -> None:
         )
     if box.tilt is not None and not all(box.periodic):
         raise DataError(f"a tilted box must be periodic on every side: {box.describe()}")
-    close = _close_pair(box.fractions(xyz), box.matrix * _scale(box, len(xyz)), box.periodic)
+    close = close_pair(box.fractions(xyz), box.matrix * cell_scale(box, len(xyz)), box.periodic)
     if close is not None:
         i, j = sorted(close)
         same = np.array_equal(xyz[i], xyz[j])
@@ -190,7 +190,7 @@ def check_points(points: Points, box: Box) -> None:
         )
 
 
-def _close_pair(
+def close_pair(
     fractions: np.ndarray, matrix: np.ndarray, periodic: tuple[bool, bool, bool]
 ) -> tuple[int, int] | None:
     """Two points within SAFETY of each other (through the periodic sides), or None; points as
@@ -277,14 +277,14 @@ def make_engine(
     reach_radius: float = 0.0,
 ):
     """The Voro++ engine (``grainclass._voro.Tessellation``) of ``points`` in ``box``, scaled by
-    ``scale`` (default: :func:`_scale` of the box and the points), and the scale. Points from
+    ``scale`` (default: :func:`cell_scale` of the box and the points), and the scale. Points from
     ``owned`` on are a margin of other parts' points (``grainclass.voronoi_parts``), whose radii
     reach at most ``reach_radius`` (of the box's units)."""
     from grainclass.parallel import get_jobs
 
     _voro = voro_engine()
     n = len(points.xyz)
-    scale = _scale(box, n) if scale is None else scale
+    scale = cell_scale(box, n) if scale is None else scale
     low, high = tuple(v * scale for v in box.low), tuple(v * scale for v in box.high)
     xyz, tilt = points.xyz * scale, None
     # Voro++ places a point at low <= x < high; a point on the upper wall (a LAMMPS box shrunk
@@ -301,7 +301,7 @@ def make_engine(
         None if points.radii is None else points.radii * scale,
         (low[0], high[0], low[1], high[1], low[2], high[2]),
         box.periodic,
-        tuple(int(b) for b in _blocks(n, box)),
+        tuple(int(b) for b in search_blocks(n, box)),
         min(get_jobs(), max(1, n // 1000)),
         tilt,
         owned,

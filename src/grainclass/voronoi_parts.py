@@ -45,11 +45,11 @@ from grainclass.options import DEFAULT_CHUNK_SIZE
 from grainclass.parts import PART_METADATA, DatasetFolder, PartsProgress
 from grainclass.voronoi import (
     VoronoiReport,
-    _blocks,
-    _close_pair,
-    _scale,
     block_order,
+    cell_scale,
     check_points,
+    close_pair,
+    search_blocks,
 )
 
 if TYPE_CHECKING:
@@ -86,7 +86,7 @@ class Slabs:
     @functools.cached_property
     def blocks(self) -> np.ndarray:
         """Voro++'s blocks per axis for the whole tessellation."""
-        return _blocks(self.n, self.box)
+        return search_blocks(self.n, self.box)
 
     @property
     def layers(self) -> int:
@@ -289,6 +289,7 @@ def tessellate_in_parts(
     side: float = 1.0,
     points: Points | None = None,
     box: Box | None = None,
+    checked: bool = False,
     chunk_size: int = DEFAULT_CHUNK_SIZE,
     margin: float = MARGIN,
     report: Callable[[PartsProgress], None] | None = None,
@@ -311,7 +312,8 @@ def tessellate_in_parts(
         unfinished data set of the same seeds in ``directory`` is resumed with its own), the
         cube's side.
     points, box : Points, Box
-        Points instead, in their box (checked here: :func:`grainclass.voronoi.check_points`).
+        Points instead, in their box (checked here, :func:`grainclass.voronoi.check_points`,
+        unless ``checked``: the caller did it).
     margin : float
         The first margin, in mean spacings of the points.
     report : callable, optional
@@ -345,7 +347,8 @@ def tessellate_in_parts(
     else:
         if box is None:
             raise OptionError("box", "points are tessellated in a box: give it")
-        check_points(points, box)
+        if not checked:
+            check_points(points, box)
         n = len(points.xyz)
         identity = {
             "command": "voronoi",
@@ -366,7 +369,7 @@ def tessellate_in_parts(
         margin=margin * spacing,
         path="",
         identity={},
-        scale=_scale(box, n),
+        scale=cell_scale(box, n),
         reach_radius=0.0 if points is None or points.radii is None else float(points.radii.max()),
         seed=seed if points is None else None,
         source=source,
@@ -613,7 +616,7 @@ def _refuse_close_seeds(points: Points, job: PartJob) -> None:
     """Refuse random seeds closer than Voro++ can separate, as one process does: any such pair
     with a point of this part is among its points and margin."""
     box = job.slabs.box
-    close = _close_pair(box.fractions(points.xyz), box.matrix * job.scale, box.periodic)
+    close = close_pair(box.fractions(points.xyz), box.matrix * job.scale, box.periodic)
     if close is not None:
         raise DataError(
             f"{job.source}: two random seeds are closer than Voro++ can separate: draw others "

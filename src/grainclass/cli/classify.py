@@ -39,7 +39,7 @@ def _is_file_or_folder(path: str) -> bool:
     return stat.S_ISREG(mode) or stat.S_ISDIR(mode)
 
 
-@click.command("classify", cls=errors.Command, epilog=exit_codes.GRAINS)
+@click.command("classify", cls=errors.Command, epilog=exit_codes.CLASSIFY)
 @click.argument("inputs", nargs=-1, required=True, metavar="INPUT...")
 @click.option(
     "-o",

@@ -66,11 +66,18 @@ SUMMARY = epilog(
     "success (bad grains are data, not errors)",
     "an input or output could not be read or written",
 )
+CLASSIFY = epilog(
+    "success (bad grains are data: they get a row with their status)",
+    "an input or output could not be read or written; with --strict, bad grains; in parts "
+    "(-o DIR/), a part failed (the others are kept)",
+    interrupted="no partial output file is left behind; in parts, the finished parts are kept",
+)
 VORONOI = epilog(
     "success",
     "points that cannot be read or tessellated (nothing is written), a tessellation that failed "
     "its checks (then the output is written, for a look), or an output that could not be "
-    "written",
+    "written; in parts (-o DIR/), a part failed (the others are kept)",
+    interrupted="no partial output file is left behind; in parts, the finished parts are kept",
 )
 CENSUS = epilog(
     "every part done, every cross-check passed",

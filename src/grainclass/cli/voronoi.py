@@ -166,14 +166,14 @@ def voronoi_cmd(
     weighted = False
     if points_path is None:
         the_box = voronoi.random_seeds_box(box, periodic)
-        if progress.enabled:
-            click.echo(f"tessellating {n_seeds:,} seeds with Voro++ ...", err=True)
         side = float(the_box.high[0])
         if folder:
             _in_parts(
                 output, parts, scheduler, workers, quiet, n_seeds=n_seeds, seed=seed, side=side
             )
             return
+        if progress.enabled:
+            click.echo(f"tessellating {n_seeds:,} seeds with Voro++ ...", err=True)
         batches = voronoi.poisson_voronoi(n_seeds, seed, side, report=report)
     else:
         from grainclass.readers.points import read_points
@@ -184,7 +184,9 @@ def voronoi_cmd(
         voronoi.check_points(points, the_box)
         weighted = points.radii is not None
         if folder:
-            _in_parts(output, parts, scheduler, workers, quiet, points=points, box=the_box)
+            _in_parts(
+                output, parts, scheduler, workers, quiet, points=points, box=the_box, checked=True
+            )
             return
         if progress.enabled:
             kind = "Laguerre" if weighted else "Voronoi"
