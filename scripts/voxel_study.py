@@ -37,6 +37,7 @@ import pyarrow.parquet as pq
 THRESHOLDS = (1, 2, 3)  # shortest true edge, in voxels, of the grains counted apart
 LLOYD_STEPS = 20
 SEED = 40  # the random seed of every seed set of the study
+TOPOLOGY_HELP = "also grainclass classify IMAGE.npy (NAME.grainclass.parquet), measured beside"
 
 
 # ---------------------------------------------------------------------------------- seeds
@@ -372,15 +373,17 @@ def resolution_for(n: int, across: float) -> int:
     return round(across * n ** (1 / 3))
 
 
-def make_image(kind: str, n: int, resolution: int, out: Path, jobs: int = 1) -> dict:
+def make_image(kind: str, n: int, resolution: int, out: Path, jobs: int = 1, topology=False):
     """Seeds, image, truth and the naive rule's table and shares of one image in ``out``:
     ``{kind}{n}.seeds.txt``, ``{kind}{n}_{R}.npy``, ``.truth.parquet``, ``.naive.parquet``,
-    ``.naive.json``. Files already there are kept (delete them to make them again)."""
+    ``.naive.json``. Files already there are kept (delete them to make them again). With
+    ``topology``, ``grainclass classify`` of the image too (``.grainclass.parquet``); where that
+    file is there, its shares go to ``.grainclass.json``. Returns {rule: shares}."""
     out.mkdir(parents=True, exist_ok=True)
     seeds = out / f"{kind}{n}.seeds.txt"
     name = f"{kind}{n}_{resolution}"
     image_path, truth_path = out / f"{name}.npy", out / f"{name}.truth.parquet"
-    naive_path, shares_path = out / f"{name}.naive.parquet", out / f"{name}.naive.json"
+    naive_path, topology_path = out / f"{name}.naive.parquet", out / f"{name}.grainclass.parquet"
     times = {}
     start = time.perf_counter()
     if not seeds.exists():
@@ -403,17 +406,31 @@ def make_image(kind: str, n: int, resolution: int, out: Path, jobs: int = 1) -> 
         start = time.perf_counter()
         _save_whole(naive_path, lambda path: naive_table(image_path, path))
         times["naive"] = time.perf_counter() - start
-    shares = compare(naive_path, truth_path)
-    shares.update(
-        image=image_path.name, kind=kind, seeds=n, resolution=resolution,
-        voxels_across=round(voxels_across(n, resolution), 2),
-    )  # fmt: skip
-    if times:
-        shares["seconds"] = {k: round(v, 1) for k, v in times.items()}
-    elif shares_path.exists():
-        shares["seconds"] = json.loads(shares_path.read_text()).get("seconds", {})
-    shares_path.write_text(json.dumps(shares, indent=1) + "\n")
-    return shares
+    if topology and not topology_path.exists():
+        start = time.perf_counter()
+        command = [sys.executable, "-m", "grainclass", "classify", "-q", "--periodic", "xyz"]
+        _save_whole(
+            topology_path,
+            lambda path: subprocess.run([*command, str(image_path), "-o", str(path)], check=True),
+        )
+        times["grainclass"] = time.perf_counter() - start
+    results = {}
+    for rule, table in (("naive", naive_path), ("grainclass", topology_path)):
+        if not table.exists():
+            continue
+        shares_path = out / f"{name}.{rule}.json"
+        shares = compare(table, truth_path)
+        shares.update(
+            image=image_path.name, kind=kind, seeds=n, resolution=resolution,
+            voxels_across=round(voxels_across(n, resolution), 2),
+        )  # fmt: skip
+        if times:
+            shares["seconds"] = {k: round(v, 1) for k, v in times.items()}
+        elif shares_path.exists():
+            shares["seconds"] = json.loads(shares_path.read_text()).get("seconds", {})
+        shares_path.write_text(json.dumps(shares, indent=1) + "\n")
+        results[rule] = shares
+    return results
 
 
 def _save_whole(path: Path, save) -> None:
@@ -440,25 +457,34 @@ def study_images(kinds=None, largest: float = 32) -> list[tuple[str, int, int]]:
     return sorted(images, key=lambda i: (i[2] != 146, i[2] != 320, i[1], i[2], i[0]))
 
 
+def _percent(share) -> str:
+    return "" if share is None else f"{100 * share:.1f}"
+
+
 def table_rows(results: list[dict]) -> list[str]:
-    """The study as Markdown rows: the naive rule's shares by resolution."""
-    rows = [
-        "| seeds | image | voxels across | grains | naive rule: exact type | right n "
-        "| edge >= 1 | edge >= 2 | edge >= 3 | grainclass: exact type | right n "
-        "| edge >= 1 | edge >= 2 | edge >= 3 |",
-        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|",
-    ]
-    for r in sorted(results, key=lambda r: (r["seeds"], r["kind"] != "cvt", r["resolution"])):
-        edges = []
-        for t in THRESHOLDS:
-            share = r[f"edge_ge_{t}_exact_type"]
-            edges.append("-" if share is None else f"{share:.1%} ({r[f'edge_ge_{t}_grains']})")
-        kind = "CVT" if r["kind"] == "cvt" else "Poisson"
-        rows.append(
-            f"| {kind} {r['seeds']} | {r['resolution']}^3 | {r['voxels_across']:.1f} "
-            f"| {r['grains']} | {r['exact_type']:.1%} | {r['right_n']:.1%} | "
-            + " | ".join(edges) + " | | | | | |"
-        )  # fmt: skip
+    """The study as Markdown: per seed set, each measure's share (%) by the naive rule and by
+    grainclass (blank where its table is not there), and the grains each edge bound keeps."""
+    rows = []
+    measures = [("exact type", "exact_type"), ("right n", "right_n")]
+    measures += [(f"edge >= {t}", f"edge_ge_{t}_exact_type") for t in THRESHOLDS]
+    results = sorted(results, key=lambda r: (r["naive"]["seeds"], r["naive"]["resolution"]))
+    for kind, title in (("cvt", "CVT"), ("poisson", "Poisson")):
+        chosen = [r for r in results if r["naive"]["kind"] == kind]
+        if not chosen:
+            continue
+        head = "| seeds | voxels across | image |"
+        head += "".join(f" {label}: naive rule | {label}: grainclass |" for label, _ in measures)
+        head += " grains (edge >= 1, 2, 3) |"
+        rows += [f"**{title}**", "", head, "|---" * (4 + 2 * len(measures)) + "|"]
+        for r in chosen:
+            naive, topology = r["naive"], r.get("grainclass", {})
+            row = f"| {title} {naive['seeds']} | {naive['voxels_across']:.1f} "
+            row += f"| {naive['resolution']}^3 |"
+            for _, key in measures:
+                row += f" {_percent(naive[key])} | {_percent(topology.get(key))} |"
+            counts = ", ".join(str(naive[f"edge_ge_{t}_grains"]) for t in THRESHOLDS)
+            rows.append(row + f" {naive['grains']} ({counts}) |")
+        rows.append("")
     return rows
 
 
@@ -497,11 +523,13 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("resolution", type=int)
     p.add_argument("--out", type=Path, required=True)
     p.add_argument("-j", "--jobs", type=int, default=1)
+    p.add_argument("--grainclass", action="store_true", help=TOPOLOGY_HELP)
     p = sub.add_parser("study", help="every image of the resolution study, and its table")
     p.add_argument("--out", type=Path, required=True)
     p.add_argument("--only", nargs="*", help="seed sets to make (cvt200, cvt2000, poisson2000)")
     p.add_argument("--largest", type=float, default=32, help="most voxels across a grain")
     p.add_argument("-j", "--jobs", type=int, default=1)
+    p.add_argument("--grainclass", action="store_true", help=TOPOLOGY_HELP)
     args = parser.parse_args(argv)
 
     if args.command == "seeds":
@@ -520,12 +548,17 @@ def main(argv: list[str] | None = None) -> int:
         else:
             print_shares(shares)
     elif args.command == "image":
-        print_shares(make_image(args.kind, args.n, args.resolution, args.out, args.jobs))
+        results = make_image(
+            args.kind, args.n, args.resolution, args.out, args.jobs, args.grainclass
+        )
+        for rule, shares in results.items():
+            print_shares(shares, f"{rule}: ")
     else:
         results = []
         for kind, n, resolution in study_images(args.only, args.largest):
-            shares = make_image(kind, n, resolution, args.out, args.jobs)
-            print_shares(shares, f"{shares['image']}: ")
+            shares = make_image(kind, n, resolution, args.out, args.jobs, args.grainclass)
+            for rule, rule_shares in shares.items():
+                print_shares(rule_shares, f"{rule_shares['image']}, {rule}: ")
             sys.stdout.flush()
             results.append(shares)
         print("\n".join(table_rows(results)))
