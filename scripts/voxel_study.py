@@ -57,8 +57,8 @@ def write_seeds(path: str | Path, xyz: np.ndarray) -> None:
 
 
 def run_voro(xyz: np.ndarray, custom: str) -> list[str]:
-    """The ``voro++`` program's custom output ``custom`` for the periodic unit cube, one line a
-    seed, in the seeds' order (``-o``)."""
+    """The ``voro++`` program's custom output ``custom`` (which starts with ``%i``) for the
+    periodic unit cube, one line a seed, in the seeds' order (``-o``), checked by its ids."""
     with tempfile.TemporaryDirectory() as tmp:
         points = Path(tmp) / "points"
         write_seeds(points, xyz)
@@ -66,7 +66,10 @@ def run_voro(xyz: np.ndarray, custom: str) -> list[str]:
             ["voro++", "-p", "-o", "-c", custom, "0", "1", "0", "1", "0", "1", str(points)],
             check=True,
         )
-        return Path(f"{points}.vol").read_text().splitlines()
+        lines = Path(f"{points}.vol").read_text().splitlines()
+    if [int(line.split(maxsplit=1)[0]) for line in lines] != list(range(1, len(xyz) + 1)):
+        raise RuntimeError(f"voro++ gave the cells of {len(xyz)} seeds out of order, or not all")
+    return lines
 
 
 def make_seeds(kind: str, n: int, seed: int = SEED, lloyd: int = LLOYD_STEPS) -> np.ndarray:
@@ -78,8 +81,6 @@ def make_seeds(kind: str, n: int, seed: int = SEED, lloyd: int = LLOYD_STEPS) ->
     for _ in range(lloyd):
         lines = run_voro(xyz, "%i %C")
         centroids = np.array([[float(v) for v in line.split()[1:4]] for line in lines])
-        if len(centroids) != n:
-            raise RuntimeError(f"voro++ gave {len(centroids)} cells of {n} seeds")
         xyz = centroids % 1.0
         xyz[xyz >= 1.0] = 0.0  # -1e-17 % 1.0 is 1.0
     return xyz
@@ -155,18 +156,19 @@ def voxelize(xyz: np.ndarray, resolution: int, jobs: int = 1) -> np.ndarray:
 # ---------------------------------------------------------------------------------- truth
 
 
-def shortest_edges(xyz: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Per seed, its cell's number of faces and the length of its shortest edge (box units),
-    from the ``voro++`` program's vertices (%p) and faces' vertex loops (%t)."""
-    faces, shortest = [], []
-    for line in run_voro(xyz, "%i %s %w %p %t"):
+def shortest_edges(xyz: np.ndarray) -> tuple[np.ndarray, np.ndarray, list[list[int]]]:
+    """Per seed, its cell's number of faces, the length of its shortest edge (box units), from
+    the ``voro++`` program's vertices (%p) and faces' vertex loops (%t), and the 1-based ids of
+    the seeds across its faces (%n), sorted."""
+    faces, shortest, neighbors = [], [], []
+    for line in run_voro(xyz, "%i %s %w %p %t %n"):
         tokens = line.split()
         n_faces, n_vertices = int(tokens[1]), int(tokens[2])
         vertices = np.array(
             [[float(v) for v in t[1:-1].split(",")] for t in tokens[3 : 3 + n_vertices]]
         )
         pairs = set()
-        for loop in tokens[3 + n_vertices :]:
+        for loop in tokens[3 + n_vertices : 3 + n_vertices + n_faces]:
             ring = [int(v) for v in loop[1:-1].split(",")]
             pairs.update(
                 (min(a, b), max(a, b)) for a, b in zip(ring, ring[1:] + ring[:1], strict=True)
@@ -175,7 +177,8 @@ def shortest_edges(xyz: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         lengths = np.linalg.norm(vertices[ends[:, 0]] - vertices[ends[:, 1]], axis=1)
         faces.append(n_faces)
         shortest.append(lengths.min())
-    return np.array(faces), np.array(shortest)
+        neighbors.append(sorted(int(t) for t in tokens[3 + n_vertices + n_faces :]))
+    return np.array(faces), np.array(shortest), neighbors
 
 
 def truth_table(seeds: str | Path, resolution: int, image: np.ndarray | None = None) -> pa.Table:
@@ -201,7 +204,7 @@ def truth_table(seeds: str | Path, resolution: int, image: np.ndarray | None = N
     cells = cells.set_index("label").reindex(ids)
     if cells["grain_id"].isna().any():
         raise RuntimeError(f"{seeds}: grainclass gave no cell to some seeds")
-    faces, shortest = shortest_edges(xyz)
+    faces, shortest, neighbors = shortest_edges(xyz)
     if not np.array_equal(faces, cells["n_faces"].to_numpy()):
         raise RuntimeError(f"{seeds}: voro++ and grainclass count different faces")
     columns = {
@@ -213,6 +216,7 @@ def truth_table(seeds: str | Path, resolution: int, image: np.ndarray | None = N
         "volume": pa.array(cells["volume"].to_numpy(dtype=np.float64)),
         "shortest_edge": pa.array(shortest),
         "shortest_edge_voxels": pa.array(shortest * resolution),
+        "neighbors": pa.array(neighbors, pa.list_(pa.uint32())),
     }
     if image is not None:
         columns["voxels"] = pa.array(check_labels(image, xyz, cells["volume"].to_numpy()))

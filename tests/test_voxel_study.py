@@ -67,8 +67,10 @@ def test_naive_rule_reads_a_cube_of_voxels_as_a_cube(tmp_path):
 def test_shortest_edge_of_the_bcc_cells_is_the_truncated_octahedrons():
     # Body-centred cubic seeds: every cell a truncated octahedron with 14 faces and every edge
     # sqrt(2)/4 of the cube's side.
-    faces, shortest = shortest_edges(np.array([[0.25, 0.25, 0.25], [0.75, 0.75, 0.75]]))
+    faces, shortest, neighbors = shortest_edges(np.array([[0.25, 0.25, 0.25], [0.75, 0.75, 0.75]]))
     assert list(faces) == [14, 14]
+    # 8 hexagons face the other seed's images, 6 squares the seed's own.
+    assert neighbors == [[1] * 6 + [2] * 8, [1] * 8 + [2] * 6]
     assert shortest == pytest.approx([math.sqrt(2) / 4] * 2, rel=1e-5)
 
 
