@@ -158,10 +158,11 @@ reproduce-census: install
 
 # Label images of periodic Voronoi tessellations (CVT and Poisson, 2,000 seeds, 8 to 32 voxels
 # across a grain) with their exact grains, and the naive voxel rule measured against them: the
-# tables of docs/voxels.md (some five minutes, 1.1 GB in VOXELS; not part of make test).
+# tables and figure of docs/voxels.md (some five minutes, 1.1 GB in VOXELS; not in make test).
 VOXELS ?= build/voxels
 voxel-study: voro install
-	nice $(BIN)/python scripts/voxel_study.py study --out $(VOXELS) --jobs 2
+	nice $(BIN)/python scripts/voxel_study.py study --out $(VOXELS) --jobs 2 \
+		--plot $(VOXELS)/voxel-study.png
 
 clean:
 	rm -rf build .pytest_cache

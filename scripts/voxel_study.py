@@ -20,6 +20,7 @@ against the truth.
 from __future__ import annotations
 
 import argparse
+import itertools
 import json
 import os
 import subprocess
@@ -368,15 +369,6 @@ def print_shares(shares: dict, name: str = "") -> None:
 # ---------------------------------------------------------------------------------- the study
 
 
-def voxels_across(n: int, resolution: int) -> float:
-    """Voxels across a grain: the image's side over the seeds' mean spacing, n^(-1/3)."""
-    return resolution / n ** (1 / 3)
-
-
-def resolution_for(n: int, across: float) -> int:
-    return round(across * n ** (1 / 3))
-
-
 def make_image(kind: str, n: int, resolution: int, out: Path, jobs: int = 1, topology=False):
     """Seeds, image, truth and the naive rule's table and shares of one image in ``out``:
     ``{kind}{n}.seeds.txt``, ``{kind}{n}_{R}.npy``, ``.truth.parquet``, ``.naive.parquet``,
@@ -426,7 +418,7 @@ def make_image(kind: str, n: int, resolution: int, out: Path, jobs: int = 1, top
         shares = compare(table, truth_path)
         shares.update(
             image=image_path.name, kind=kind, seeds=n, resolution=resolution,
-            voxels_across=round(voxels_across(n, resolution), 2),
+            voxels_across=round(resolution / n ** (1 / 3), 2),  # side / mean seed spacing
         )  # fmt: skip
         if times:
             shares["seconds"] = {k: round(v, 1) for k, v in times.items()}
@@ -456,13 +448,10 @@ def study_images(kinds=None, largest: float = 32) -> list[tuple[str, int, int]]:
     for kind, n, acrosses in STUDY:
         if kinds and f"{kind}{n}" not in kinds:
             continue
-        images += [(kind, n, resolution_for(n, a)) for a in acrosses if a <= largest]
+        # R = round(v * N^(1/3)) for v voxels across a grain.
+        images += [(kind, n, round(a * n ** (1 / 3))) for a in acrosses if a <= largest]
     # The issue's 320^3 images first, after the small one: they are wanted first.
     return sorted(images, key=lambda i: (i[2] != 146, i[2] != 320, i[1], i[2], i[0]))
-
-
-def _percent(share) -> str:
-    return "" if share is None else f"{100 * share:.1f}"
 
 
 def table_rows(results: list[dict]) -> list[str]:
@@ -485,11 +474,42 @@ def table_rows(results: list[dict]) -> list[str]:
             row = f"| {title} {naive['seeds']} | {naive['voxels_across']:.1f} "
             row += f"| {naive['resolution']}^3 |"
             for _, key in measures:
-                row += f" {_percent(naive[key])} | {_percent(topology.get(key))} |"
+                for share in (naive[key], topology.get(key)):
+                    row += " |" if share is None else f" {100 * share:.1f} |"
             counts = ", ".join(str(naive[f"edge_ge_{t}_grains"]) for t in THRESHOLDS)
             rows.append(row + f" {naive['grains']} ({counts}) |")
         rows.append("")
     return rows
+
+
+def plot_study(results: list[dict], path: str) -> None:
+    """Exact-type shares of the 2,000-seed images against voxels across a grain: all grains
+    (circles), and those whose shortest edge is >= 2 voxels where there are 20 or more
+    (triangles); naive rule solid, grainclass dashed."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    figure, axes = plt.subplots(figsize=(6.4, 4.2))
+    for (kind, color), (rule, line) in itertools.product(
+        (("cvt", "C0"), ("poisson", "C3")), (("naive", "-"), ("grainclass", "--"))
+    ):
+        chosen = [r[rule] for r in results if rule in r and r[rule]["kind"] == kind]
+        chosen = sorted((s for s in chosen if s["seeds"] == 2000), key=lambda s: s["resolution"])
+        for key, marker, what in (("", "o", "all grains"), ("edge_ge_2_", "^", "edge >= 2")):
+            shares = [
+                100 * s[f"{key}exact_type"] if s.get(f"{key}grains", 20) >= 20 else np.nan
+                for s in chosen
+            ]
+            name = f"{'CVT' if kind == 'cvt' else 'Poisson'}, {rule} rule, {what}"
+            label = name.replace("grainclass rule", "grainclass")
+            if chosen:
+                across = [s["voxels_across"] for s in chosen]
+                axes.plot(across, shares, line + marker, color=color, label=label)
+    axes.set(xlabel="voxels across a grain", ylabel="exact types (%)", ylim=(0, 100))
+    axes.legend(fontsize=7, loc="lower right")
+    figure.savefig(path, dpi=120, bbox_inches="tight")
 
 
 # ---------------------------------------------------------------------------------- commands
@@ -534,6 +554,7 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--largest", type=float, default=32, help="most voxels across a grain")
     p.add_argument("-j", "--jobs", type=int, default=1)
     p.add_argument("--grainclass", action="store_true", help=TOPOLOGY_HELP)
+    p.add_argument("--plot", help="draw the shares into this figure (.png, .svg)")
     args = parser.parse_args(argv)
 
     if args.command == "seeds":
@@ -566,6 +587,8 @@ def main(argv: list[str] | None = None) -> int:
             sys.stdout.flush()
             results.append(shares)
         print("\n".join(table_rows(results)))
+        if args.plot:
+            plot_study(results, args.plot)
     return 0
 
 
