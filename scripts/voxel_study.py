@@ -337,6 +337,8 @@ def compare(result: str | Path, truth: str | Path) -> dict:
     got = pq.read_table(result, columns=["grain_id", "status", "n_faces", "weinberg"])
     got_df = got.to_pandas().drop_duplicates("grain_id").set_index("grain_id")
     want_df = want.to_pandas().set_index("grain_id")
+    if len(got_df) and not got_df.index.isin(want_df.index).any():
+        raise SystemExit(f"{result}: no grain_id is a label of {truth} (first: {got_df.index[0]})")
     got_df = got_df.reindex(want_df.index)
     exact = (got_df["status"] == "ok") & (got_df["weinberg"] == want_df["weinberg"])
     right_n = got_df["n_faces"] == want_df["n_faces"]
