@@ -14,7 +14,7 @@ FIGURE_SEEDS ?= 100000
 # One time step of a grain-growth simulation, one Surface Evolver file per grain.
 GRAIN_GROWTH ?= tests/data/evolver/grain3d
 
-.PHONY: all install voro FORCE demo figures test test-nojit test-lowest lint bench bench-prisms bench-parts fuzz reproduce-enumeration reproduce-voronoi reproduce-census bench-census clean
+.PHONY: all install voro FORCE demo figures test test-nojit test-lowest lint bench bench-prisms bench-parts fuzz reproduce-enumeration reproduce-voronoi reproduce-census bench-census voxel-study clean
 
 all: lint test
 
@@ -155,6 +155,14 @@ reproduce-voronoi: voro install
 # and against the paper up to n = 14 (under four minutes on two cores; resumes if interrupted).
 reproduce-census: install
 	$(BIN)/python scripts/reproduce_census.py
+
+# Label images of periodic Voronoi tessellations (CVT and Poisson, 2,000 seeds, 8 to 32 voxels
+# across a grain) with their exact grains, and the naive voxel rule measured against them: the
+# tables and figure of docs/voxels.md (some five minutes, 1.1 GB in VOXELS; not in make test).
+VOXELS ?= build/voxels
+voxel-study: voro install
+	nice $(BIN)/python scripts/voxel_study.py study --out $(VOXELS) --jobs 2 \
+		--plot $(VOXELS)/voxel-study.png
 
 clean:
 	rm -rf build .pytest_cache
