@@ -209,10 +209,108 @@ def image_topology(
     quads, quad_weight = _unique_rows(quad, len(labels))
     columns, column_count = _unique_rows(col, len(labels))
     pairs = np.stack([index[keys >> 32], index[keys & 0xFFFFFFFF]], axis=1)
+    triples, triple_weight, quads, quad_weight = _settle(
+        pairs, faces, triples, triple_weight, quads, quad_weight
+    )
     return ImageTopology(
         image.source, labels, counts[labels], boundary[labels].astype(bool), euler[labels],
         pairs, faces, triples, triple_weight, quads, quad_weight, columns, column_count,
     )  # fmt: skip
+
+
+SPURIOUS_FACE_CONTACTS = 1
+"""A small triangular face whose two grains share at most this many voxel faces ..."""
+SPURIOUS_FACE_PIECES = 20
+"""... and whose three triple lines are at most this many simplices of the blocks' meshes is
+taken for a short triple line seen flipped (docs/voxels.md)."""
+
+
+def _settle(
+    pairs: np.ndarray,
+    pair_faces: np.ndarray,
+    triples: np.ndarray,
+    triple_weight: np.ndarray,
+    quads: np.ndarray,
+    quad_weight: np.ndarray,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """The triple lines and quadruple points with two kinds of voxel artefacts undone.
+
+    A *lens*: a quadruple point {x, y, u, v} whose pair x, y is in no other one, whose triple
+    lines {x, y, u} and {x, y, v} end at it alone and whose triple lines {x, u, v} and
+    {y, u, v} are on three quadruple points each: x and y touch at one spot between u and v,
+    a face of two sides for both; it is removed, and the rest is a triangulation again.
+    A *tiny triangle*: a pair d, e on exactly three quadruple points {d, e, a, b}, {d, e, b, c},
+    {d, e, c, a} (a triangular face for both), sharing at most
+    :data:`SPURIOUS_FACE_CONTACTS` voxel faces, its triple lines at most
+    :data:`SPURIOUS_FACE_PIECES` simplices: flipped into the short triple line {a, b, c}
+    between {a, b, c, d} and {a, b, c, e}. Both keep every grain's graph consistent with the
+    others'."""
+    from itertools import combinations
+
+    contact = {(int(a), int(b)): int(w) for (a, b), w in zip(pairs, pair_faces, strict=True)}
+    tw = {tuple(t): int(w) for t, w in zip(triples.tolist(), triple_weight.tolist(), strict=True)}
+    qw = {tuple(q): int(w) for q, w in zip(quads.tolist(), quad_weight.tolist(), strict=True)}
+    loose = {t for t in tw}  # triples with no quadruple point stay as they are
+    pair_quads: dict[tuple[int, ...], set[tuple[int, ...]]] = {}
+    triple_quads: dict[tuple[int, ...], set[tuple[int, ...]]] = {}
+
+    def add(q: tuple[int, ...], weight: int) -> None:
+        qw[q] = weight
+        for p in combinations(q, 2):
+            pair_quads.setdefault(p, set()).add(q)
+        for t in combinations(q, 3):
+            triple_quads.setdefault(t, set()).add(q)
+            tw.setdefault(t, 0)
+
+    def remove(q: tuple[int, ...]) -> None:
+        del qw[q]
+        for p in combinations(q, 2):
+            pair_quads[p].discard(q)
+        for t in combinations(q, 3):
+            triple_quads[t].discard(q)
+            if not triple_quads[t]:
+                tw.pop(t, None)
+
+    for q, weight in list(qw.items()):
+        add(q, weight)
+    loose -= set(triple_quads)
+    for q in list(qw):
+        if q not in qw:
+            continue
+        for x, y in combinations(q, 2):
+            if len(pair_quads[(x, y)]) != 1:
+                continue
+            u, v = (z for z in q if z not in (x, y))
+            ends = [len(triple_quads[tuple(sorted(t))]) for t in ((x, y, u), (x, y, v))]
+            sides = [len(triple_quads[tuple(sorted(t))]) for t in ((x, u, v), (y, u, v))]
+            if ends == [1, 1] and sides == [3, 3]:
+                remove(q)
+                break
+    for (d, e), around in sorted(pair_quads.items(), key=lambda item: contact.get(item[0], 0)):
+        if len(around) != 3 or contact.get((d, e), 0) > SPURIOUS_FACE_CONTACTS:
+            continue
+        others = sorted({x for q in around for x in q} - {d, e})
+        if len(others) != 3 or triple_quads.get(tuple(others)):
+            continue
+        pieces = sum(tw.get(tuple(sorted((d, e, x))), 0) for x in others)
+        two = (tuple(sorted((*others, d))), tuple(sorted((*others, e))))
+        if pieces > SPURIOUS_FACE_PIECES or two[0] in qw or two[1] in qw:
+            continue
+        weight = min(qw[q] for q in around)
+        for q in list(around):
+            remove(q)
+        for q in two:
+            add(q, weight)
+    kept = sorted(set(tw) | loose)
+    new_triples = np.array(kept, np.int64).reshape(-1, 3)
+    new_weight = np.array([tw.get(t, 0) for t in kept], np.int64)
+    kept_quads = sorted(qw)
+    return (
+        new_triples,
+        new_weight,
+        np.array(kept_quads, np.int64).reshape(-1, 4),
+        np.array([qw[q] for q in kept_quads], np.int64),
+    )
 
 
 def _merge_counts(parts: list[np.ndarray]) -> np.ndarray:
