@@ -14,6 +14,7 @@ saying which.
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
 
@@ -22,7 +23,8 @@ import numpy as np
 from grainclass import parallel
 from grainclass.batch import GrainBatch, offsets_from_counts
 from grainclass.errors import InputError
-from grainclass.readers.label_image import LabelImage
+from grainclass.options import ReadOptions
+from grainclass.readers.label_image import LabelImage, in_memory
 
 MAX_LABEL = (1 << 26) - 1
 """Labels index dense tables (17 bytes per label and thread): a larger label is refused."""
@@ -57,7 +59,8 @@ class ImageTopology:
     column_count: np.ndarray  # int64 (C,): lattice edges with them
 
 
-def _check_slab(image: LabelImage, slab: np.ndarray) -> np.ndarray:
+def check_slab(image: LabelImage, slab: np.ndarray) -> np.ndarray:
+    """A slab's labels as int32, refused where they are no labels grainclass takes."""
     if slab.dtype.kind not in "iu" or slab.dtype.itemsize > 8:
         raise InputError(
             image.source,
@@ -172,7 +175,7 @@ def image_topology(
     z = 0
     try:
         for slab in image.slabs(SLAB_DEPTH):
-            slab = _check_slab(image, slab)
+            slab = check_slab(image, slab)
             if slab.shape[1:] != (ny, nx):
                 raise InputError(image.source, f"a slab of shape {slab.shape}, not (k, {ny}, {nx})")
             if first_plane is None:
@@ -471,3 +474,34 @@ def image_batches(
             voxels=topology.voxels[start:stop],
             shortest_triple_line=np.where(has_line, shortest, -1)[start:stop],
         )
+
+
+def read_image(image: LabelImage, options: ReadOptions) -> Iterator[GrainBatch]:
+    """The grains of a label image as batches, read as ``options`` say (periodic axes, voxel
+    size, background labels, connected pieces as grains of their own: then grain_id numbers
+    the pieces and a ``label`` column gives each piece's label).
+
+    Raises
+    ------
+    InputError
+        An image that cannot be read (see :func:`image_topology`).
+    MissingDependencyError
+        ``components`` without connected-components-3d (``grainclass[images]``).
+    """
+    periodic = _as_flags(options.periodic, image)
+    background: Sequence[int] = options.background
+    original = None
+    if options.components:
+        from grainclass.components import connected_pieces
+
+        whole = np.concatenate([check_slab(image, slab) for slab in image.slabs(SLAB_DEPTH)])
+        pieces, original = connected_pieces(whole, periodic, background)
+        image = in_memory(image.source, pieces, image.spacing, image.periodic)
+        background = (0,)
+    topology = image_topology(image, periodic, background)
+    spacing = options.spacing or image.spacing
+    for batch in image_batches(topology, options.chunk_size, spacing):
+        if original is not None:
+            labels = [str(original[int(g)]) for g in batch.grain_id]
+            batch = dataclasses.replace(batch, attributes={"label": labels})
+        yield batch
