@@ -9,7 +9,6 @@ def test_every_input_format_has_its_reader():
     """A format offered on the command line is one read_dataset can dispatch: a stream reader,
     Surface Evolver, read by file, or a label image."""
     from grainclass.readers import STREAM_READERS
-
     from grainclass.readers.images import IMAGE_OPENERS
 
     assert sorted([*STREAM_READERS, "evolver", *IMAGE_OPENERS]) == sorted(INPUT_FORMATS)
