@@ -378,12 +378,8 @@ def _problems(topology: ImageTopology) -> dict[int, str]:
             "a boundary grain: it touches a side of the image that does not wrap (--periodic) "
             "or the background (--background), where its faces are cuts"
         )
-    for g in np.flatnonzero(neighbours == 0):
-        problems.setdefault(int(g), "it touches no other grain")
-    for g in np.flatnonzero(only >= 0):
-        problems.setdefault(
-            int(g), f"enclosed by grain {labels[only[g]]}, its only neighbour: it has no corners"
-        )
+    # A solid grain with one neighbour is enclosed by it.
+    only[topology.boundary | (topology.euler != 1)] = -1
     enclosed: dict[int, list[int]] = {}
     for g in np.flatnonzero(only >= 0):
         enclosed.setdefault(int(only[g]), []).append(int(labels[g]))
@@ -398,6 +394,12 @@ def _problems(topology: ImageTopology) -> dict[int, str]:
             inside = ", ".join(str(x) for x in enclosed[g][:5])
             what += f"; it encloses grain {inside}" + (", ..." if len(enclosed[g]) > 5 else "")
         problems.setdefault(g, what)
+    for g in np.flatnonzero(neighbours == 0):
+        problems.setdefault(int(g), "it touches no other grain")
+    for g in np.flatnonzero(only >= 0):
+        problems.setdefault(
+            int(g), f"enclosed by grain {labels[only[g]]}, its only neighbour: it has no corners"
+        )
     for g, inside in enclosed.items():
         if g not in problems:
             problems[g] = f"it encloses grain {', '.join(str(x) for x in inside[:5])}"
