@@ -223,7 +223,7 @@ def image_topology(
 
 SPURIOUS_FACE_CONTACTS = 1
 """A small triangular face whose two grains share at most this many voxel faces ..."""
-SPURIOUS_FACE_PIECES = 20
+SPURIOUS_FACE_PIECES = 21
 """... and whose three triple lines are at most this many simplices of the blocks' meshes is
 taken for a short triple line seen flipped (docs/voxels.md)."""
 
