@@ -207,10 +207,17 @@ def image_topology(
     merged = _merge_counts(pair_keys) if pair_keys else np.zeros((2, 0), np.int64)
     keys, faces = merged[0], merged[1]
     all_blocks = np.concatenate(blocks) if blocks else np.zeros((0, 8), np.int32)
-    tri, quad, col = _resolve_blocks(all_blocks, keys, faces, index)
-    triples, triple_weight = _unique_rows(tri, len(labels))
-    quads, quad_weight = _unique_rows(quad, len(labels))
-    columns, column_count = _unique_rows(col, len(labels))
+    cuts = [len(all_blocks) * k // (4 * jobs) for k in range(4 * jobs + 1)]
+    parts = list(
+        parallel.map_ordered(
+            lambda k: _resolve_blocks(all_blocks, cuts[k], cuts[k + 1], keys, faces, index),
+            range(4 * jobs),
+        )
+    )
+    n = len(labels)
+    triples, triple_weight = _sum_rows([p[0] for p in parts], [p[1] for p in parts], n)
+    quads, quad_weight = _sum_rows([p[2] for p in parts], [p[3] for p in parts], n)
+    columns, column_count = _sum_rows([p[4] for p in parts], [p[5] for p in parts], n)
     pairs = np.stack([index[keys >> 32], index[keys & 0xFFFFFFFF]], axis=1)
     triples, triple_weight, quads, quad_weight = _settle(
         pairs, faces, triples, triple_weight, quads, quad_weight
@@ -250,10 +257,35 @@ def _settle(
     others'."""
     from itertools import combinations
 
-    contact = {(int(a), int(b)): int(w) for (a, b), w in zip(pairs, pair_faces, strict=True)}
-    tw = {tuple(t): int(w) for t, w in zip(triples.tolist(), triple_weight.tolist(), strict=True)}
-    qw = {tuple(q): int(w) for q, w in zip(quads.tolist(), quad_weight.tolist(), strict=True)}
-    loose = {t for t in tw}  # triples with no quadruple point stay as they are
+    n = int(max(quads.max(initial=-1), triples.max(initial=-1), pairs.max(initial=-1))) + 1
+    # Only quadruple points near a pair on one of them, or on three and few voxel faces, can be
+    # edited: the dictionaries below hold those with three labels among the labels of theirs,
+    # complete for every pair and triple line they are asked about.
+    pair_of = [(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)]
+    pair_keys = np.stack([quads[:, a] * n + quads[:, b] for a, b in pair_of], axis=1)
+    keys, counts = np.unique(pair_keys, return_counts=True)
+    contact_keys = pairs[:, 0] * n + pairs[:, 1]
+    order = np.argsort(contact_keys)
+    at = np.searchsorted(contact_keys[order], keys)
+    found = at < len(order)
+    found[found] = contact_keys[order][at[found]] == keys[found]
+    faces_of_key = np.where(found, pair_faces[order][np.minimum(at, len(order) - 1)], 0)
+    candidate = (counts == 1) | ((counts == 3) & (faces_of_key <= SPURIOUS_FACE_CONTACTS))
+    near = np.isin(pair_keys, keys[candidate]).any(axis=1)
+    involved = np.zeros(n, bool)
+    involved[quads[near].ravel()] = True
+    subset = involved[quads].sum(axis=1) >= 3
+    inside = involved[triples].all(axis=1) if len(triples) else np.zeros(0, bool)
+
+    tw = {
+        tuple(t): int(w)
+        for t, w in zip(triples[inside].tolist(), triple_weight[inside].tolist(), strict=True)
+    }
+    qw = {
+        tuple(q): int(w)
+        for q, w in zip(quads[subset].tolist(), quad_weight[subset].tolist(), strict=True)
+    }
+    loose = set(tw)  # triples with no quadruple point stay as they are
     pair_quads: dict[tuple[int, ...], set[tuple[int, ...]]] = {}
     triple_quads: dict[tuple[int, ...], set[tuple[int, ...]]] = {}
 
@@ -277,20 +309,25 @@ def _settle(
     for q, weight in list(qw.items()):
         add(q, weight)
     loose -= set(triple_quads)
-    for q in list(qw):
-        if q not in qw:
+    lens_pairs = {(int(k // n), int(k % n)) for k in keys[counts == 1]}
+    for x, y in sorted(lens_pairs):
+        around = pair_quads.get((x, y))
+        if not around or len(around) != 1:
             continue
-        for x, y in combinations(q, 2):
-            if len(pair_quads[(x, y)]) != 1:
-                continue
-            u, v = (z for z in q if z not in (x, y))
-            ends = [len(triple_quads[tuple(sorted(t))]) for t in ((x, y, u), (x, y, v))]
-            sides = [len(triple_quads[tuple(sorted(t))]) for t in ((x, u, v), (y, u, v))]
-            if ends == [1, 1] and sides == [3, 3]:
-                remove(q)
-                break
-    for (d, e), around in sorted(pair_quads.items(), key=lambda item: contact.get(item[0], 0)):
-        if len(around) != 3 or contact.get((d, e), 0) > SPURIOUS_FACE_CONTACTS:
+        (q,) = around
+        u, v = (z for z in q if z not in (x, y))
+        ends = [len(triple_quads[tuple(sorted(t))]) for t in ((x, y, u), (x, y, v))]
+        sides = [len(triple_quads[tuple(sorted(t))]) for t in ((x, u, v), (y, u, v))]
+        if ends == [1, 1] and sides == [3, 3]:
+            remove(q)
+    triangles = [
+        (int(f), int(k // n), int(k % n))
+        for k, f, c in zip(keys, faces_of_key, counts, strict=True)
+        if c == 3 and f <= SPURIOUS_FACE_CONTACTS
+    ]
+    for _, d, e in sorted(triangles):
+        around = pair_quads[(d, e)]
+        if len(around) != 3:
             continue
         others = sorted({x for q in around for x in q} - {d, e})
         if len(others) != 3 or triple_quads.get(tuple(others)):
@@ -304,15 +341,23 @@ def _settle(
             remove(q)
         for q in two:
             add(q, weight)
-    kept = sorted(set(tw) | loose)
-    new_triples = np.array(kept, np.int64).reshape(-1, 3)
-    new_weight = np.array([tw.get(t, 0) for t in kept], np.int64)
+    kept = sorted(t for t in set(tw) | loose if all(involved[list(t)]))
+    near_triples = np.array(kept, np.int64).reshape(-1, 3)
+    near_weight = np.array([tw.get(t, 0) for t in kept], np.int64)
     kept_quads = sorted(qw)
+    all_triples = np.concatenate([triples[~inside], near_triples])
+    all_weight = np.concatenate([triple_weight[~inside], near_weight])
+    all_quads = np.concatenate([quads[~subset], np.array(kept_quads, np.int64).reshape(-1, 4)])
+    all_quad_weight = np.concatenate(
+        [quad_weight[~subset], np.array([qw[q] for q in kept_quads], np.int64)]
+    )
+    t_order = np.lexsort(all_triples.T[::-1])
+    q_order = np.lexsort(all_quads.T[::-1])
     return (
-        new_triples,
-        new_weight,
-        np.array(kept_quads, np.int64).reshape(-1, 4),
-        np.array([qw[q] for q in kept_quads], np.int64),
+        all_triples[t_order],
+        all_weight[t_order],
+        all_quads[q_order],
+        all_quad_weight[q_order],
     )
 
 
@@ -323,17 +368,30 @@ def _merge_counts(parts: list[np.ndarray]) -> np.ndarray:
     return np.stack([keys, np.bincount(inverse, weights=both[1]).astype(np.int64)])
 
 
-def _unique_rows(rows: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray]:
-    """The distinct rows of small non-negative ints (< n) and how often each comes."""
-    width = rows.shape[1]
-    if len(rows) == 0:
-        return np.zeros((0, width), np.int64), np.zeros(0, np.int64)
-    order = np.lexsort(rows.T[::-1])
-    rows = rows[order]
-    new = np.ones(len(rows), bool)
-    new[1:] = np.any(rows[1:] != rows[:-1], axis=1)
-    starts = np.flatnonzero(new)
-    return rows[starts], np.diff(np.append(starts, len(rows)))
+def _sum_rows(
+    rows: list[np.ndarray], weights: list[np.ndarray], n: int
+) -> tuple[np.ndarray, np.ndarray]:
+    """The distinct rows of grain indices (< n, sorted within a row) of several parts, in
+    lexicographic order, with their weights summed."""
+    width = rows[0].shape[1] if rows else 3
+    every = np.concatenate(rows) if rows else np.zeros((0, width), np.int64)
+    weight = np.concatenate(weights) if weights else np.zeros(0, np.int64)
+    if len(every) == 0:
+        return every.reshape(0, width), weight
+    if float(n) ** width < 2**62:
+        key = np.zeros(len(every), np.int64)
+        for column in range(width):
+            key = key * n + every[:, column]
+        _, first, inverse = np.unique(key, return_index=True, return_inverse=True)
+    else:
+        order = np.lexsort(every.T[::-1])
+        ordered = every[order]
+        new = np.r_[True, np.any(ordered[1:] != ordered[:-1], axis=1)]
+        group = np.cumsum(new) - 1
+        inverse = np.empty(len(every), np.int64)
+        inverse[order] = group
+        first = order[new]
+    return every[first], np.bincount(inverse.ravel(), weights=weight).astype(np.int64)
 
 
 def _directed(triples: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

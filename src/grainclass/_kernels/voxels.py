@@ -324,46 +324,69 @@ def _column_triple(block, col, out, row):
     return True
 
 
+@njit(inline="always")
+def _add_row(rows, weights, n, start, row, width):
+    """Adds one to the weight of ``row`` among ``rows[start:n]``, or appends it; returns n."""
+    for r in range(start, n):
+        same = True
+        for c in range(width):
+            if rows[r, c] != row[c]:
+                same = False
+                break
+        if same:
+            weights[r] += 1
+            return n
+    for c in range(width):
+        rows[n, c] = row[c]
+    weights[n] = 1
+    return n + 1
+
+
 @njit
-def _resolve_blocks(blocks, pair_keys, pair_counts, index):
-    """Triple lines and quadruple points of every block of three labels or more (rows of 8
-    labels): ``(tri, quad, columns)``, rows of 3, 4 and 3 grain indices (``index[label]``),
-    sorted within a row: one row per simplex of the block's mesh with three (four) labels, and
-    one per lattice edge whose column holds exactly three labels. O(blocks)."""
-    n = len(blocks)
-    tri_counts = np.zeros(n + 1, np.int64)
-    quad_counts = np.zeros(n + 1, np.int64)
-    col_counts = np.zeros(n + 1, np.int64)
+def _resolve_blocks(blocks, first, last, pair_keys, pair_counts, index):
+    """Triple lines and quadruple points of blocks ``first .. last - 1`` (rows of 8 labels, each
+    with three labels or more): ``(tri, tri_weight, quad, quad_weight, col, col_weight)``, rows
+    of 3, 4 and 3 grain indices (``index[label]``) sorted within a row, distinct within a block,
+    weighted by the simplices of the block's mesh with those three (four) labels, and by the
+    block's own lattice edges whose column holds exactly those three. O(blocks)."""
+    n = last - first
+    tri_out = np.empty((56 * n, 3), np.int64)
+    tri_weight = np.empty(56 * n, np.int64)
+    quad_out = np.empty((24 * n, 4), np.int64)
+    quad_weight = np.empty(24 * n, np.int64)
+    col_out = np.empty((3 * n, 3), np.int64)
+    col_weight = np.empty(3 * n, np.int64)
     tri = np.empty((72, 3), np.int64)
     quad = np.empty((24, 4), np.int64)
     col = np.empty((3, 3), np.int64)
-    for b in range(n):
+    row = np.empty(4, np.int64)
+    n_tri, n_quad, n_col = 0, 0, 0
+    for b in range(first, last):
         nt, nq = _block_simplices(blocks[b], pair_keys, pair_counts, tri, quad)
-        tri_counts[b + 1] = tri_counts[b] + nt
-        quad_counts[b + 1] = quad_counts[b] + nq
-        nc = 0
-        for k in range(3):
-            nc += _column_triple(blocks[b], k, col, 0)
-        col_counts[b + 1] = col_counts[b] + nc
-    tri_out = np.empty((tri_counts[n], 3), np.int64)
-    quad_out = np.empty((quad_counts[n], 4), np.int64)
-    col_out = np.empty((col_counts[n], 3), np.int64)
-    for b in range(n):
-        nt, nq = _block_simplices(blocks[b], pair_keys, pair_counts, tri, quad)
+        start = n_tri
         for i in range(nt):
             for j in range(3):
-                tri_out[tri_counts[b] + i, j] = index[tri[i, j]]
+                row[j] = index[tri[i, j]]
+            n_tri = _add_row(tri_out, tri_weight, n_tri, start, row, 3)
+        start = n_quad
         for i in range(nq):
             for j in range(4):
-                quad_out[quad_counts[b] + i, j] = index[quad[i, j]]
-        nc = 0
+                row[j] = index[quad[i, j]]
+            n_quad = _add_row(quad_out, quad_weight, n_quad, start, row, 4)
+        start = n_col
         for k in range(3):
-            if _column_triple(blocks[b], k, col, nc):
-                nc += 1
-        for i in range(nc):
-            for j in range(3):
-                col_out[col_counts[b] + i, j] = index[col[i, j]]
-    return tri_out, quad_out, col_out
+            if _column_triple(blocks[b], k, col, 0):
+                for j in range(3):
+                    row[j] = index[col[0, j]]
+                n_col = _add_row(col_out, col_weight, n_col, start, row, 3)
+    return (
+        tri_out[:n_tri].copy(),
+        tri_weight[:n_tri].copy(),
+        quad_out[:n_quad].copy(),
+        quad_weight[:n_quad].copy(),
+        col_out[:n_col].copy(),
+        col_weight[:n_col].copy(),
+    )
 
 
 @njit
