@@ -35,6 +35,9 @@ MAX_GRAINS = 1 << 21
 SLAB_DEPTH = 16
 """Planes read at a time: memory is a few slabs plus the per-label tables."""
 
+BLOCKS_PER_PART = 1 << 16
+"""Blocks resolved per call: a thread's scratch for them stays below 100 MB."""
+
 AXES = "xyz"
 
 
@@ -207,11 +210,13 @@ def image_topology(
     merged = _merge_counts(pair_keys) if pair_keys else np.zeros((2, 0), np.int64)
     keys, faces = merged[0], merged[1]
     all_blocks = np.concatenate(blocks) if blocks else np.zeros((0, 8), np.int32)
-    cuts = [len(all_blocks) * k // (4 * jobs) for k in range(4 * jobs + 1)]
+    # Parts of at most BLOCKS_PER_PART blocks: each part's scratch is 56 rows a block.
+    n_parts = max(2 * jobs, -(-len(all_blocks) // BLOCKS_PER_PART))
+    cuts = [len(all_blocks) * k // n_parts for k in range(n_parts + 1)]
     parts = list(
         parallel.map_ordered(
             lambda k: _resolve_blocks(all_blocks, cuts[k], cuts[k + 1], keys, faces, index),
-            range(4 * jobs),
+            range(n_parts),
         )
     )
     n = len(labels)

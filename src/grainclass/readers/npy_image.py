@@ -1,10 +1,11 @@
 """Label images stored by NumPy: a ``.npy`` file of one 3D integer array indexed ``[z, y, x]``,
 or a ``.npz`` archive holding exactly one such array.
 
-A ``.npy`` file is memory-mapped, so an image larger than memory is read slab by slab; an array
-in a ``.npz`` archive cannot be mapped (it may be compressed) and is read whole. The header is
-checked before a voxel is read: three axes, integer labels, and as many bytes as the header
-promises (a file cut short is named as such, not read as garbage).
+A ``.npy`` file is read slab by slab (memory-mapped where it is in Fortran order), so an image
+larger than memory is never held whole; an array in a ``.npz`` archive cannot be mapped (it may
+be compressed) and is read whole. The header is checked before a voxel is read: three axes,
+integer labels, and as many bytes as the header promises (a file cut short is named as such,
+not read as garbage).
 """
 
 from __future__ import annotations
@@ -26,13 +27,20 @@ def npy_header(handle) -> tuple[tuple[int, ...], bool, np.dtype, int]:
     """``(shape, fortran_order, dtype, data_offset)`` of the ``.npy`` stream at its start.
 
     Raises ValueError for anything that is not a ``.npy`` header."""
+    from tokenize import TokenError
+
     major, _ = np.lib.format.read_magic(handle)
-    if major == 1:
-        shape, fortran, dtype = np.lib.format.read_array_header_1_0(handle)
-    elif major in (2, 3):
-        shape, fortran, dtype = np.lib.format.read_array_header_2_0(handle)
-    else:
-        raise ValueError(f"NumPy format version {major} is not known")
+    try:
+        if major == 1:
+            shape, fortran, dtype = np.lib.format.read_array_header_1_0(handle)
+        elif major in (2, 3):
+            shape, fortran, dtype = np.lib.format.read_array_header_2_0(handle)
+        else:
+            raise ValueError(f"NumPy format version {major} is not known")
+    # numpy reads the header's dictionary with Python's tokenizer and literal_eval: a damaged
+    # one raises what they raise.
+    except (SyntaxError, TokenError, TypeError, OverflowError, EOFError, KeyError) as exc:
+        raise ValueError(f"a damaged header: {exc}") from None
     return tuple(int(n) for n in shape), bool(fortran), np.dtype(dtype), handle.tell()
 
 
@@ -103,12 +111,27 @@ def _open_npy(path: str) -> LabelImage:
     nz, ny, nx = shape
     if nz * ny * nx == 0:
         raise InputError(path, f"an empty image ({nz} x {ny} x {nx} voxels)")
-    order = "F" if fortran else "C"
-    voxels = np.memmap(path, dtype=dtype, mode="r", offset=offset, shape=shape, order=order)
+    if fortran:  # z varies fastest on disk: a slab is strided, read through a memory map
+        voxels = np.memmap(path, dtype=dtype, mode="r", offset=offset, shape=shape, order="F")
+
+        def slabs(depth: int) -> Iterator[np.ndarray]:
+            for z in range(0, nz, depth):
+                yield np.ascontiguousarray(voxels[z : z + depth])
+
+        return LabelImage(path, (nz, ny, nx), dtype, None, slabs)
 
     def slabs(depth: int) -> Iterator[np.ndarray]:
-        for z in range(0, nz, depth):
-            yield np.ascontiguousarray(voxels[z : z + depth])
+        # Read, not mapped: pages of a map that were read count as the process's memory until
+        # the system takes them back, a whole 4 GB image by the end of a pass.
+        plane = ny * nx
+        with open(path, "rb") as handle:
+            handle.seek(offset)
+            for z in range(0, nz, depth):
+                k = min(depth, nz - z)
+                slab = np.fromfile(handle, dtype=dtype, count=k * plane)
+                if slab.size != k * plane:
+                    raise InputError(path, f"cut short at plane {z} of {nz}")
+                yield slab.reshape(k, ny, nx)
 
     return LabelImage(path, (nz, ny, nx), dtype, None, slabs)
 
