@@ -69,9 +69,10 @@ class GrainBatch:
     grain_id : list of str or pyarrow.StringArray
         One id per grain.
     location : numpy.ndarray of int64, shape (G,)
-        Where each grain starts in the input: a line number (text) or record number (binary).
+        Where each grain starts in the input: a line number (text) or record number (binary),
+        or a label image's label.
     location_kind : str
-        ``"line"`` or ``"record"``.
+        ``"line"``, ``"record"`` or ``"label"``.
     face_offsets : numpy.ndarray of int64, shape (G + 1,)
         Grain ``g`` has faces ``face_offsets[g]:face_offsets[g + 1]``.
     nbr_offsets : numpy.ndarray of int64, shape (F + 1,)

@@ -527,8 +527,8 @@ def image_batches(
         yield GrainBatch(
             source=topology.source,
             grain_id=[str(x) for x in labels[start:stop]],
-            location=np.arange(start, stop) + 1,
-            location_kind="record",
+            location=labels[start:stop],
+            location_kind="label",
             face_offsets=face_offsets[start : stop + 1] - f0,
             nbr_offsets=nbr_offsets,
             neighbors=local[group_start[f0] : group_start[f1]],
