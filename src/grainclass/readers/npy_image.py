@@ -11,6 +11,7 @@ not read as garbage).
 from __future__ import annotations
 
 import io
+import re
 import zipfile
 from collections.abc import Iterator
 
@@ -47,6 +48,20 @@ def npy_header(handle) -> tuple[tuple[int, ...], bool, np.dtype, int]:
 def is_label_array(shape: tuple[int, ...], dtype: np.dtype) -> bool:
     """A 3D array of integers: a label image."""
     return len(shape) == 3 and dtype.kind in "iu"
+
+
+_DESCR = re.compile(rb"""['"]descr['"]\s*:\s*['"][<>|=]?([a-zA-Z])""")
+
+
+def header_says_points(head: bytes) -> bool:
+    """Whether the first bytes of a ``.npy`` file are points: by its header, or, for a header
+    cut short or damaged, by the kind of number its ``descr`` names (floats are points)."""
+    try:
+        shape, _, dtype, _ = npy_header(io.BytesIO(head))
+    except ValueError:
+        kind = _DESCR.search(head)
+        return kind is not None and kind.group(1) == b"f"
+    return looks_like_points(shape, dtype)
 
 
 def looks_like_points(shape: tuple[int, ...], dtype: np.dtype) -> bool:

@@ -135,15 +135,9 @@ def points_kind(head: bytes) -> str | None:
 
 
 def _npy_points(head: bytes) -> bool:
-    import io
+    from grainclass.readers.npy_image import header_says_points
 
-    from grainclass.readers.npy_image import looks_like_points, npy_header
-
-    try:
-        shape, _, dtype, _ = npy_header(io.BytesIO(head))
-    except ValueError:
-        return False
-    return looks_like_points(shape, dtype)
+    return header_says_points(head)
 
 
 _TEXT = frozenset(b"\t\n\r" + bytes(range(32, 127)))
