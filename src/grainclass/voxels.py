@@ -250,10 +250,12 @@ def _settle(
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """The triple lines and quadruple points with two kinds of voxel artefacts undone.
 
-    A *lens*: a quadruple point {x, y, u, v} whose pair x, y is in no other one, whose triple
-    lines {x, y, u} and {x, y, v} end at it alone and whose triple lines {x, u, v} and
-    {y, u, v} are on three quadruple points each: x and y touch at one spot between u and v,
-    a face of two sides for both; it is removed, and the rest is a triangulation again.
+    *Odd triple lines*: in a triangulation every triple line is on two quadruple points. A
+    quadruple point each of whose four triple lines is on an odd number (one or three) is
+    removed, which leaves each on none or two; so is a pair sharing a triple line, each on three
+    odd ones. A *lens* is one such: x and y touch at one spot between u and v, a face of two
+    sides for both ({x, y, u} and {x, y, v} on {x, y, u, v} alone, {x, u, v} and {y, u, v} on
+    three).
     A *tiny triangle*: a pair d, e on exactly three quadruple points {d, e, a, b}, {d, e, b, c},
     {d, e, c, a} (a triangular face for both), sharing at most
     :data:`SPURIOUS_FACE_CONTACTS` voxel faces, its triple lines at most
@@ -277,6 +279,14 @@ def _settle(
     faces_of_key = np.where(found, pair_faces[order][np.minimum(at, len(order) - 1)], 0)
     candidate = (counts == 1) | ((counts == 3) & (faces_of_key <= SPURIOUS_FACE_CONTACTS))
     near = np.isin(pair_keys, keys[candidate]).any(axis=1)
+    # Quadruple points on a triple line that is on an odd number of them.
+    triple_of = [(0, 1, 2), (0, 1, 3), (0, 2, 3), (1, 2, 3)]
+    triple_keys = np.stack(
+        [(quads[:, a] * n + quads[:, b]) * n + quads[:, c] for a, b, c in triple_of], axis=1
+    )
+    t_keys, t_counts = np.unique(triple_keys, return_counts=True)
+    odd = np.isin(triple_keys, t_keys[t_counts % 2 == 1])
+    near |= odd.any(axis=1)
     involved = np.zeros(n, bool)
     involved[quads[near].ravel()] = True
     subset = involved[quads].sum(axis=1) >= 3
@@ -314,17 +324,27 @@ def _settle(
     for q, weight in list(qw.items()):
         add(q, weight)
     loose -= set(triple_quads)
-    lens_pairs = {(int(k // n), int(k % n)) for k in keys[counts == 1]}
-    for x, y in sorted(lens_pairs):
-        around = pair_quads.get((x, y))
-        if not around or len(around) != 1:
-            continue
-        (q,) = around
-        u, v = (z for z in q if z not in (x, y))
-        ends = [len(triple_quads[tuple(sorted(t))]) for t in ((x, y, u), (x, y, v))]
-        sides = [len(triple_quads[tuple(sorted(t))]) for t in ((x, u, v), (y, u, v))]
-        if ends == [1, 1] and sides == [3, 3]:
+
+    # Odd triple lines: a quadruple point each of whose triple lines is on an odd number of
+    # them is removed (every one of them is then on 0 or 2), and so is a pair of quadruple
+    # points sharing a triple line, each on three odd ones.
+    def odd_triples(q: tuple[int, ...]) -> list[tuple[int, ...]]:
+        return [t for t in combinations(q, 3) if len(triple_quads[t]) % 2 == 1]
+
+    suspects = sorted(tuple(q) for q in quads[odd.any(axis=1)].tolist())
+    for q in suspects:
+        if q in qw and len(odd_triples(q)) == 4:
             remove(q)
+    for q in suspects:
+        if q not in qw or len(odd_triples(q)) != 3:
+            continue
+        (shared,) = [t for t in combinations(q, 3) if len(triple_quads[t]) % 2 == 0]
+        if len(triple_quads[shared]) != 2:
+            continue
+        (other,) = triple_quads[shared] - {q}
+        if len(odd_triples(other)) == 3:
+            remove(q)
+            remove(other)
     triangles = [
         (int(f), int(k // n), int(k % n))
         for k, f, c in zip(keys, faces_of_key, counts, strict=True)
