@@ -14,7 +14,7 @@ FIGURE_SEEDS ?= 100000
 # One time step of a grain-growth simulation, one Surface Evolver file per grain.
 GRAIN_GROWTH ?= tests/data/evolver/grain3d
 
-.PHONY: all install voro FORCE demo figures test test-nojit test-lowest lint bench bench-prisms bench-parts fuzz reproduce-enumeration reproduce-voronoi reproduce-census bench-census voxel-study clean
+.PHONY: all install voro FORCE demo figures test test-nojit test-lowest lint bench bench-prisms bench-voxels bench-parts fuzz reproduce-enumeration reproduce-voronoi reproduce-census bench-census voxel-study clean
 
 all: lint test
 
@@ -123,6 +123,10 @@ bench: voro install
 # One giant grain: the k-gonal prism for k = 1,000, 4,000 and 20,000 (a minute or two).
 bench-prisms: install
 	$(BIN)/python benchmarks/bench.py --prisms-only $(BENCH_ARGS)
+
+# Label images alone: a 320^3 image against np.load + np.unique, a 1024^3 image's memory.
+bench-voxels: install
+	$(BIN)/python benchmarks/bench.py --voxels-only $(BENCH_ARGS)
 
 # Mutation fuzzing of every reader from the seeds in tests/data (10^5 cases, minutes; not in CI):
 # any exception that is not a typed error, a lost row, a case slower than 2 s. FUZZ_CASES=N.

@@ -11,8 +11,9 @@ classify`` on the same grains, as planar_code and as adjacency text; (i) one gia
 k-gonal prism for k = 1,000, 4,000 and 20,000, with and without types; (j) a folder of Surface
 Evolver grain files end to end, against ``cat`` of the same files; (k) ``grainclass voronoi N
 --parts P -o DIR/`` on a local Dask cluster against linear scaling from one process's
-``voronoi 268402``, and the mean faces per grain of ``summarize DIR/``. Each topic is a module
-of its own beside this one.
+``voronoi 268402``, and the mean faces per grain of ``summarize DIR/``; (l) label images:
+``classify`` of a 320^3 ``.npy`` against ``np.load`` + ``np.unique`` of it, and a 1024^3
+image's peak memory. Each topic is a module of its own beside this one.
 
 With ``--compare-src DIR``, every figure of grainclass is measured for another checkout too
 (its own ``.venv``, from its ``make install``), ours and theirs in turn in the same rounds, and
@@ -39,6 +40,7 @@ from startup import bench_startup
 from timing import Checkout, checkouts
 from voronoi import bench_voronoi
 from voronoi_parts import bench_voronoi_parts
+from voxels import bench_voxels
 
 
 def main() -> None:
@@ -75,6 +77,13 @@ def main() -> None:
     parser.add_argument("--parts", type=int, default=16, help="parts of (k) (default 16)")
     parser.add_argument("--parts-rounds", type=int, default=1, help="rounds of (k) (default 1)")
     parser.add_argument("--parts-only", action="store_true", help="only (k), voronoi in parts")
+    parser.add_argument("--voxels-only", action="store_true", help="only (l), label images")
+    parser.add_argument(
+        "--voxels-big",
+        type=int,
+        default=1024,
+        help="side of (l)'s large image, for its peak memory (default 1024; 0: none)",
+    )
     parser.add_argument(
         "--compare-src",
         type=Path,
@@ -103,7 +112,13 @@ def main() -> None:
 
 def run(args: argparse.Namespace, work: Path, sides: list[Checkout]) -> None:
     """The sections the options ask for, in the report's order."""
-    only = (args.perturb_only, args.prisms_only, args.voronoi_only, args.evolver_only)
+    only = (
+        args.perturb_only,
+        args.prisms_only,
+        args.voronoi_only,
+        args.evolver_only,
+        args.voxels_only,
+    )
     if any(only) or args.parts_only:
         if args.parts_only:
             bench_voronoi_parts(work, sides, args.parts_seeds, args.parts, args.parts_rounds)
@@ -115,6 +130,8 @@ def run(args: argparse.Namespace, work: Path, sides: list[Checkout]) -> None:
             bench_prisms(args.prisms, work, sides)
         if args.evolver_only:
             bench_evolver(args.evolver_files, args.rounds, work, sides)
+        if args.voxels_only:
+            bench_voxels(work, args.rounds, sides, args.voxels_big)
         return
     if not args.census_only:
         bench_startup(work, sides)
@@ -128,6 +145,7 @@ def run(args: argparse.Namespace, work: Path, sides: list[Checkout]) -> None:
         bench_prisms(args.prisms, work, sides)
         bench_evolver(args.evolver_files, args.rounds, work, sides)
         bench_voronoi_parts(work, sides, args.parts_seeds, args.parts, args.parts_rounds)
+        bench_voxels(work, args.rounds, sides, args.voxels_big)
 
 
 if __name__ == "__main__":

@@ -1,13 +1,13 @@
 """``make fuzz``: mutation fuzzing of every reader, in process, from the seed files in tests/data.
 
 Each case takes a seed (adjacency text, face loops, planar_code, Voro++ output, Neper .tess,
-Surface Evolver .fe), mutates its bytes (flips, insertions, deletions, repeats, splices with
-another seed, numbers made huge, negative or long, lines cut or repeated), reads it with the
-seed's format named and classifies it with types. A finding is any exception that is not a typed
-grainclass error, a lost row (classify's table shorter than the batches read, or, for adjacency
-text, fewer rows than lines of grains), or a case slower than a bound. Each finding's input is
-written to a folder (``--findings``), to be kept in tests/data/fuzz/findings, where
-tests/test_fuzz_findings.py runs each through the same checks.
+Surface Evolver .fe, a NumPy label image), mutates its bytes (flips, insertions, deletions,
+repeats, splices with another seed, numbers made huge, negative or long, lines cut or
+repeated), reads it with the seed's format named and classifies it with types. A finding is any
+exception that is not a typed grainclass error, a lost row (classify's table shorter than the
+batches read, or, for adjacency text, fewer rows than lines of grains), or a case slower than a
+bound. Each finding's input is written to a folder (``--findings``), to be kept in
+tests/data/fuzz/findings, where tests/test_fuzz_findings.py runs each through the same checks.
 """
 
 from __future__ import annotations
@@ -34,6 +34,7 @@ SEEDS = [
     (DATA / "neper" / "two_cells.tess", "neper", ".tess"),
     (DATA / "evolver" / "two_cubes.fe", "evolver", ".fe"),
     (DATA / "evolver" / "grain3d" / "21000-00000053.fe", "evolver", ".fe"),
+    (DATA / "fuzz" / "image.npy", "npy", ".npy"),
 ]
 
 NUMBERS = [b"0", b"-1", b"1", b"2147483648", b"9223372036854775808", b"1e308", b"nan", b"-0",
@@ -98,7 +99,7 @@ def run_case(path: Path, fmt: str, data: bytes) -> tuple[str | None, float]:
     try:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
-            for batch in read_dataset(str(path), format=fmt):
+            for batch in read_dataset(str(path), input_format=fmt):
                 table = classify(batch)
                 read += len(batch)
                 rows += table.num_rows

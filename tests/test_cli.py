@@ -88,7 +88,7 @@ def test_classify_names_the_layout_and_the_version_in_the_metadata(runner, tmp_p
     assert runner.invoke(cli, ["classify", "-", "-o", str(out)], input=CUBE_LINE).exit_code == 0
     metadata = pq.read_schema(out).metadata
     assert metadata[b"grainclass.version"] == grainclass.__version__.encode()
-    assert metadata[b"grainclass.schema_version"] == b"5"
+    assert metadata[b"grainclass.schema_version"] == b"6"
 
 
 def test_row_groups_have_statistics_to_filter_by_but_not_of_free_text(runner, tmp_path):

@@ -11,7 +11,7 @@ import pytest
 ROOT = Path(__file__).resolve().parent.parent
 FINDINGS = ROOT / "tests" / "data" / "fuzz" / "findings"
 FORMATS = {".txt": "adjacency", ".loops": "loops", ".pc": "planar_code", ".voro": "voro",
-           ".tess": "neper", ".fe": "evolver"}  # fmt: skip
+           ".tess": "neper", ".fe": "evolver", ".npy": "npy"}  # fmt: skip
 
 
 def _fuzz():

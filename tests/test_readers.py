@@ -7,10 +7,11 @@ from grainclass.vocabulary import INPUT_FORMATS
 
 def test_every_input_format_has_its_reader():
     """A format offered on the command line is one read_dataset can dispatch: a stream reader,
-    or Surface Evolver, read by file."""
+    Surface Evolver, read by file, or a label image."""
     from grainclass.readers import STREAM_READERS
+    from grainclass.readers.images import IMAGE_OPENERS
 
-    assert sorted([*STREAM_READERS, "evolver"]) == sorted(INPUT_FORMATS)
+    assert sorted([*STREAM_READERS, "evolver", *IMAGE_OPENERS]) == sorted(INPUT_FORMATS)
 
 
 def test_the_package_keeps_its_public_names():

@@ -69,9 +69,10 @@ class GrainBatch:
     grain_id : list of str or pyarrow.StringArray
         One id per grain.
     location : numpy.ndarray of int64, shape (G,)
-        Where each grain starts in the input: a line number (text) or record number (binary).
+        Where each grain starts in the input: a line number (text) or record number (binary),
+        or a label image's label.
     location_kind : str
-        ``"line"`` or ``"record"``.
+        ``"line"``, ``"record"`` or ``"label"``.
     face_offsets : numpy.ndarray of int64, shape (G + 1,)
         Grain ``g`` has faces ``face_offsets[g]:face_offsets[g + 1]``.
     nbr_offsets : numpy.ndarray of int64, shape (F + 1,)
@@ -90,6 +91,11 @@ class GrainBatch:
     face_labels : numpy.ndarray of int64, shape (F,), optional
         The input's own id of each face (Neper's face ids), by which messages name faces;
         without them a face is named by its 0-based position in its grain.
+    voxels : numpy.ndarray of int64, shape (G,), optional
+        Voxels of each grain, for grains read from a label image.
+    shortest_triple_line : numpy.ndarray of int64, shape (G,), optional
+        The length of a grain's shortest triple line in voxels, as a label image shows it
+        (the lattice edges around which its three grains alone meet); -1 where not known.
     shapes : list of (Shape or None), optional
         Each grain in space, read only when asked for (``ReadOptions.geometry``) and only
         where the input has corner positions (Surface Evolver, Neper); None for a grain that
@@ -110,6 +116,8 @@ class GrainBatch:
     attributes: dict[str, list[str | None]] = field(default_factory=dict)
     face_labels: np.ndarray | None = None
     shapes: list[Shape | None] | None = None
+    voxels: np.ndarray | None = None
+    shortest_triple_line: np.ndarray | None = None
 
     def __post_init__(self) -> None:
         # Coerce once at the boundary so that the kernels see one layout only.

@@ -30,6 +30,13 @@ def _floats(values: np.ndarray | None, length: int) -> pa.Array:
     return pa.nulls(length, pa.float64()) if values is None else floats(values)
 
 
+def _counts(values: np.ndarray | None, length: int) -> pa.Array:
+    """Counts as int64, null where missing (None, or a negative entry)."""
+    if values is None:
+        return pa.nulls(length, pa.int64())
+    return numbers(np.asarray(values, np.int64), pa.int64(), np.asarray(values) >= 0)
+
+
 def _classify_csr(
     batch: GrainBatch, max_small: int, strings: bool, limit: int | None = None
 ) -> Classified:
@@ -285,6 +292,8 @@ def _table(
         schema.VOLUME: _floats(volume, g),
         schema.AREA: _floats(area, g),
         schema.ISOPERIMETRIC: _floats(batch.isoperimetric, g),
+        schema.VOXELS: _counts(batch.voxels, g),
+        schema.SHORTEST_TRIPLE_LINE: _counts(batch.shortest_triple_line, g),
     }
     table = pa.table(columns, schema=schema.GRAIN_SCHEMA)
     for key, values in batch.attributes.items():

@@ -44,6 +44,8 @@ def _where(batch: GrainBatch, g: int) -> str:
     source = batch.source if isinstance(batch.source, str) else batch.source[g]
     if batch.location_kind == "line":
         return f"{source}:{batch.location[g]}"
+    if batch.location_kind == "label":  # a label image's grain, named by its label
+        return f"{source}: grain {batch.location[g]}"
     return f"{source}: record {batch.location[g]}"
 
 

@@ -81,6 +81,16 @@ class ReadOptions:
     geometry : bool
         Keep each grain's corner positions and surface polygons (``GrainBatch.shapes``) where
         the input has them (Surface Evolver, Neper), to draw the grain in space.
+    periodic : str or None
+        Label images: the axes that wrap (``"xyz"``, ``"xy"``, ..., ``""`` for none); None: as
+        the image's file says, else none.
+    spacing : (float, float, float) or None
+        Label images: the size of a voxel along x, y and z; None: as the file says, else 1.
+    background : tuple of int
+        Label images: labels that are no grain (a grain touching one is a boundary grain).
+    components : bool
+        Label images: each connected piece of a label (voxels joined through faces, across
+        the axes that wrap) is a grain of its own (needs ``grainclass[images]``).
 
     Examples
     --------
@@ -100,6 +110,10 @@ class ReadOptions:
     include_boundary: bool = False
     jobs: int | None = None
     geometry: bool = False
+    periodic: str | None = None
+    spacing: tuple[float, float, float] | None = None
+    background: tuple[int, ...] = ()
+    components: bool = False
 
     def __post_init__(self) -> None:
         if self.input_format is not None:
@@ -117,6 +131,7 @@ class ReadOptions:
                 "triple_edges", f"the triple-edge mark is a (key, value) pair, not {key_value!r}"
             )
         object.__setattr__(self, "triple_edges", key_value)
+        _check_image_options(self)
 
     @classmethod
     def of(cls, options: ReadOptions | None = None, **settings: Any) -> ReadOptions:
@@ -144,6 +159,35 @@ class ReadOptions:
     def split_length(self) -> int:
         """The length of the belts whose split type summaries and type counts give."""
         return self.belt_length or SHORTEST_BELT
+
+
+def _check_image_options(options: ReadOptions) -> None:
+    """The label-image fields of ``options``, checked and put in one form."""
+    import math
+
+    if options.periodic is not None:
+        axes = options.periodic.lower() if isinstance(options.periodic, str) else "?"
+        axes = "" if axes == "none" else axes
+        if set(axes) - set("xyz") or len(set(axes)) != len(axes):
+            raise OptionError(
+                "periodic", f"periodic axes are some of x, y and z (or none), not {axes!r}"
+            )
+        object.__setattr__(options, "periodic", "".join(a for a in "xyz" if a in axes))
+    if options.spacing is not None:
+        try:
+            spacing = tuple(float(d) for d in options.spacing)
+        except (TypeError, ValueError):
+            spacing = ()
+        if len(spacing) != 3 or not all(math.isfinite(d) and d > 0 for d in spacing):
+            raise OptionError(
+                "spacing",
+                f"the voxel size is three positive numbers DX,DY,DZ, not {options.spacing!r}",
+            )
+        object.__setattr__(options, "spacing", spacing)
+    background = tuple(options.background)
+    if not all(isinstance(b, int) and not isinstance(b, bool) and b >= 0 for b in background):
+        raise OptionError("background", f"background labels are integers >= 0, not {background!r}")
+    object.__setattr__(options, "background", tuple(sorted(set(background))))
 
 
 @dataclass(frozen=True)

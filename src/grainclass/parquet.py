@@ -33,6 +33,8 @@ _ADDED_LATER = (
     schema.VOLUME,
     schema.AREA,
     schema.ISOPERIMETRIC,
+    schema.VOXELS,
+    schema.SHORTEST_TRIPLE_LINE,
 )
 # Columns of text that is all but unique to its grain: no statistics are written for them.
 _FREE_TEXT = frozenset({GRAIN_ID, schema.ERROR, schema.TREES, schema.WEINBERG})

@@ -4,7 +4,7 @@ import pyarrow as pa
 
 from grainclass import __version__
 
-SCHEMA_VERSION = "5"
+SCHEMA_VERSION = "6"
 
 GRAIN_ID = "grain_id"
 SOURCE = "source"
@@ -34,6 +34,8 @@ CHIRALITY = "chirality"
 VOLUME = "volume"
 AREA = "area"
 ISOPERIMETRIC = "isoperimetric"
+VOXELS = "voxels"
+SHORTEST_TRIPLE_LINE = "shortest_triple_line"
 
 GRAIN_SCHEMA = pa.schema(
     [
@@ -65,6 +67,8 @@ GRAIN_SCHEMA = pa.schema(
         (VOLUME, pa.float64()),
         (AREA, pa.float64()),
         (ISOPERIMETRIC, pa.float64()),
+        (VOXELS, pa.int64()),
+        (SHORTEST_TRIPLE_LINE, pa.int64()),
     ],
     metadata={"grainclass.schema_version": SCHEMA_VERSION, "grainclass.version": __version__},
 )

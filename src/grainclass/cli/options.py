@@ -62,6 +62,9 @@ FLAGS = {
     "belt": "--belt",
     "columns": "--columns",
     "solid": "--3d",
+    "spacing": "--spacing",
+    "background": "--background",
+    "components": "--components",
 }
 
 
@@ -279,6 +282,7 @@ def reading(
             help="Threads for the compiled kernels (default: the CPUs this process may use).",
         ),
         click.option("-q", "--quiet", is_flag=True, help=quiet_help, callback=startup.note_quiet),
+        *image_options(),
     ]
     if types_default is not None:
         options.append(
@@ -328,12 +332,78 @@ def reading(
                 belt_length=length,
                 include_boundary=kwargs.pop("include_boundary", False),
                 jobs=kwargs.pop("jobs"),
+                periodic=kwargs.pop("periodic"),
+                spacing=kwargs.pop("spacing"),
+                background=kwargs.pop("background"),
+                components=kwargs.pop("components"),
             )
             return command(*args, **kwargs)
 
         return _stack(options)(with_reading)  # type: ignore[return-value]
 
     return decorate
+
+
+def _periodic_axes(ctx: click.Context, param: click.Parameter, value: str | None) -> str | None:
+    if value is None:
+        return None
+    axes = value.strip().lower()
+    axes = "" if axes == "none" else axes
+    if set(axes) - set("xyz") or len(set(axes)) != len(axes):
+        raise click.BadParameter(f"expected some of x, y, z (xyz, xy, ...) or none, got {value!r}")
+    return axes
+
+
+def _spacing(
+    ctx: click.Context, param: click.Parameter, value: str | None
+) -> tuple[float, float, float] | None:
+    import math
+
+    if value is None:
+        return None
+    try:
+        sizes = tuple(float(part) for part in value.split(","))
+    except ValueError:
+        sizes = ()
+    if len(sizes) == 1:
+        sizes = sizes * 3
+    if len(sizes) != 3 or not all(math.isfinite(d) and d > 0 for d in sizes):
+        raise click.BadParameter(f"expected DX,DY,DZ (or D), positive numbers, got {value!r}")
+    return sizes  # type: ignore[return-value]
+
+
+def image_options() -> list[Callable[[F], F]]:
+    """--periodic, --spacing, --background, --components: how a label image is read."""
+    return [
+        click.option(
+            "--periodic",
+            metavar="AXES",
+            callback=_periodic_axes,
+            help="Label images: the axes that wrap (xyz, xy, ..., none). Default: as the file "
+            "says, else none (a grain on a side of the image is a boundary grain).",
+        ),
+        click.option(
+            "--spacing",
+            metavar="DX,DY,DZ",
+            callback=_spacing,
+            help="Label images: the size of a voxel (volume = voxels x DX DY DZ). Default: as "
+            "the file says, else 1.",
+        ),
+        click.option(
+            "--background",
+            type=click.IntRange(min=0),
+            multiple=True,
+            metavar="ID",
+            help="Label images: a label that is no grain (repeatable); grains touching it are "
+            "boundary grains.",
+        ),
+        click.option(
+            "--components",
+            is_flag=True,
+            help="Label images: each connected piece of a label is a grain of its own "
+            "(needs grainclass[images]).",
+        ),
+    ]
 
 
 def table_output(help: str = "Write here instead of stdout.") -> Callable[[F], F]:

@@ -2,7 +2,8 @@
 
 :func:`read_dataset` opens each input (``streams.py``), names its format unless it is given
 (``sniffing.py``) and hands it to that format's reader (:data:`STREAM_READERS`); Surface Evolver
-datafiles are read by file, consecutive ones as one dataset (``evolver.py``).
+datafiles are read by file, consecutive ones as one dataset (``evolver.py``), and so are label
+images (``images.py``: each opened into a ``LabelImage``, its grains found by ``voxels.py``).
 """
 
 from __future__ import annotations
@@ -17,6 +18,7 @@ from grainclass.errors import EmptyInputWarning, InputError
 from grainclass.options import ReadOptions
 from grainclass.readers.adjacency import read_adjacency
 from grainclass.readers.evolver import read_evolver
+from grainclass.readers.images import IMAGE_OPENERS, sniff_image
 from grainclass.readers.loops import read_loops
 from grainclass.readers.neper import read_neper
 from grainclass.readers.planar_code import PlanarCodeRecords, read_planar_code
@@ -63,9 +65,23 @@ def _sniff_path(path: str, format: str | None) -> str:
         return ""  # sniffed from the stream itself, once it is opened in its turn
     try:
         with open(path, "rb") as handle:
-            return sniff(handle.read(SNIFF_BYTES))
+            head = handle.read(SNIFF_BYTES)
+            return sniff_image(path, head) or sniff(head)
     except OSError as exc:
         raise InputError(path, exc.strerror or str(exc)) from None
+
+
+def _read_image(path: str, format: str, options: ReadOptions) -> Iterator[GrainBatch]:
+    from grainclass.voxels import read_image
+
+    if path == "-" or _is_stream(path):
+        raise InputError(path, "a label image is read from a file, not from a pipe")
+    grains = 0
+    for batch in read_image(IMAGE_OPENERS[format](path), options):
+        grains += len(batch)
+        yield batch
+    if not grains:
+        warnings.warn(f"{path}: no grains", EmptyInputWarning, stacklevel=3)
 
 
 def read_dataset(
@@ -114,6 +130,10 @@ def read_dataset(
     ]
     k = 0
     while k < len(paths):
+        if formats[k] in IMAGE_OPENERS:
+            yield from _read_image(paths[k], formats[k], options)
+            k += 1
+            continue
         if evolver_files[k]:
             end = k
             while end < len(paths) and evolver_files[end]:
@@ -125,6 +145,8 @@ def read_dataset(
         k += 1
         with _open(path) as stream:
             head = stream.peek(SNIFF_BYTES)[:SNIFF_BYTES]
+            if sniff_image(path, head):
+                raise InputError(path, "a label image: images are read from files, not a pipe")
             fmt = formats[k - 1] or sniff(head)
             # Named as a text format or not, UTF-16, a compressed file or a Parquet table is
             # refused for what it is (planar_code is bytes: its records may start like them).

@@ -112,7 +112,9 @@ def points_kind(head: bytes) -> str | None:
     "Voro++'s input of points"
     """
     if head.startswith(b"\x93NUMPY"):
-        return "a NumPy array of points"
+        # A 3D integer array is a label image, which readers.images names; an (n, 3) float
+        # array is points.
+        return "a NumPy array of points" if _npy_points(head) else None
     lines = [line.strip() for line in head.splitlines() if line.strip()]
     if len(head) == SNIFF_BYTES and lines and not head.endswith(b"\n"):
         lines.pop()  # cut short by the head
@@ -130,6 +132,12 @@ def points_kind(head: bytes) -> str | None:
     if all(_VORO_POINT.fullmatch(line) for line in lines) and any(b"." in x for x in lines):
         return "Voro++'s input of points"
     return None
+
+
+def _npy_points(head: bytes) -> bool:
+    from grainclass.readers.npy_image import header_says_points
+
+    return header_says_points(head)
 
 
 _TEXT = frozenset(b"\t\n\r" + bytes(range(32, 127)))
