@@ -5,7 +5,10 @@ Surface Evolver .fe), mutates its bytes (flips, insertions, deletions, repeats, 
 another seed, numbers made huge, negative or long, lines cut or repeated), reads it with the
 seed's format named and classifies it with types. A finding is any exception that is not a typed
 grainclass error, a lost row (classify's table shorter than the batches read, or, for adjacency
-text, fewer rows than lines of grains), or a case slower than a bound. Each finding's input is
+text, fewer rows than lines of grains), or a case slower than a bound. A seed of a 3D label
+image (TIFF, DREAM.3D, .vti, SPPARKS dump, .tesr) is opened with its format's reader and read
+slab by slab: it must end in a whole image (every slab of the shape and type the image
+declares, as many voxels as it has) or in a typed grainclass error. Each finding's input is
 written to a folder (``--findings``), to be kept in tests/data/fuzz/findings, where
 tests/test_fuzz_findings.py runs each through the same checks.
 """
@@ -13,6 +16,7 @@ tests/test_fuzz_findings.py runs each through the same checks.
 from __future__ import annotations
 
 import argparse
+import logging
 import random
 import sys
 import tempfile
@@ -34,7 +38,24 @@ SEEDS = [
     (DATA / "neper" / "two_cells.tess", "neper", ".tess"),
     (DATA / "evolver" / "two_cubes.fe", "evolver", ".fe"),
     (DATA / "evolver" / "grain3d" / "21000-00000053.fe", "evolver", ".fe"),
+    (DATA / "fuzz" / "images" / "labels.tif", "tiff", ".tif"),
+    (DATA / "fuzz" / "images" / "labels.dream3d", "dream3d", ".dream3d"),
+    (DATA / "fuzz" / "images" / "raw.vti", "vti", ".vti"),
+    (DATA / "fuzz" / "images" / "zlib.vti", "vti", ".vti"),
+    (DATA / "fuzz" / "images" / "ascii.vti", "vti", ".vti"),
+    (DATA / "images" / "damask-voronoi.vti", "vti", ".vti"),
+    (DATA / "fuzz" / "images" / "sites.dump", "spparks", ".dump"),
+    (DATA / "fuzz" / "images" / "ascii.tesr", "tesr", ".tesr"),
+    (DATA / "fuzz" / "images" / "binary.tesr", "tesr", ".tesr"),
 ]
+# The readers of 3D label images: format -> (module, opener).
+IMAGE_OPENERS = {
+    "tiff": ("grainclass.readers.tiff_image", "open_tiff"),
+    "dream3d": ("grainclass.readers.dream3d", "open_dream3d"),
+    "vti": ("grainclass.readers.vti", "open_vti"),
+    "spparks": ("grainclass.readers.spparks", "open_spparks"),
+    "tesr": ("grainclass.readers.tesr", "open_tesr"),
+}
 
 NUMBERS = [b"0", b"-1", b"1", b"2147483648", b"9223372036854775808", b"1e308", b"nan", b"-0",
            b"99999999999999999999999999", b"3.5", b"inf"]  # fmt: skip
@@ -88,8 +109,48 @@ def data_lines(data: bytes) -> int | None:
     return sum(1 for line in lines if line.strip() and not line.lstrip().startswith(b"#"))
 
 
+def run_image_case(path: Path, fmt: str) -> tuple[str | None, float]:
+    """``(finding, seconds)``: what is wrong with opening the label image ``path`` and reading
+    it in slabs of 2 slices, or None."""
+    import importlib
+
+    import numpy as np
+
+    from grainclass.errors import GrainclassError
+
+    module, name = IMAGE_OPENERS[fmt]
+    opener = getattr(importlib.import_module(module), name)
+    start = time.perf_counter()
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            image = opener(str(path))
+            _, ny, nx = image.shape
+            voxels = 0
+            for slab in image.slabs(2):
+                if not (
+                    isinstance(slab, np.ndarray)
+                    and slab.ndim == 3
+                    and 1 <= slab.shape[0] <= 2
+                    and slab.shape[1:] == (ny, nx)
+                    and slab.dtype == image.dtype
+                ):
+                    shape = getattr(slab, "shape", None)
+                    return f"a slab of shape {shape} in a {image.shape} image", 0.0
+                voxels += slab.size
+    except GrainclassError:
+        return None, time.perf_counter() - start
+    except Exception:  # a finding: anything else that escapes
+        return traceback.format_exc(limit=6), time.perf_counter() - start
+    if voxels != image.voxels:
+        return f"lost voxels: {voxels} read of {image.voxels}", time.perf_counter() - start
+    return None, time.perf_counter() - start
+
+
 def run_case(path: Path, fmt: str, data: bytes) -> tuple[str | None, float]:
     """``(finding, seconds)``: what is wrong with reading and classifying ``path``, or None."""
+    if fmt in IMAGE_OPENERS:
+        return run_image_case(path, fmt)
     from grainclass import classify, read_dataset
     from grainclass.errors import GrainclassError
 
@@ -124,12 +185,23 @@ def main() -> int:
     parser.add_argument("--seed", type=int, default=1)
     parser.add_argument("--bound", type=float, default=2.0, help="seconds a case may take")
     parser.add_argument("--findings", type=Path, default=ROOT / "build" / "fuzz-findings")
+    parser.add_argument(
+        "--formats", help="only the seeds of these formats, comma-separated (default: all)"
+    )
     args = parser.parse_args()
     from grainclass import parallel
 
+    # tifffile logs what it finds wrong in a damaged file; the reader's error says enough.
+    logging.getLogger("tifffile").setLevel(logging.CRITICAL)
+
     parallel.set_jobs(1)  # one case at a time, in this thread: tracebacks point at the kernel
     rng = random.Random(args.seed)
-    seeds = [(path.read_bytes(), fmt, suffix) for path, fmt, suffix in SEEDS]
+    formats = None if args.formats is None else set(args.formats.split(","))
+    seeds = [
+        (path.read_bytes(), fmt, suffix)
+        for path, fmt, suffix in SEEDS
+        if formats is None or fmt in formats
+    ]
     findings = 0
     slowest = 0.0
     started = time.perf_counter()

@@ -119,7 +119,7 @@ def _geometry(path: str, h5py, container, shape) -> tuple[float, float, float] |
 def _open(path: str, h5py):
     try:
         return h5py.File(path, "r")
-    except OSError as exc:
+    except Exception as exc:  # h5py raises many kinds on a damaged file
         raise InputError(path, f"not an HDF5 file h5py can read ({exc})") from None
 
 
@@ -161,18 +161,23 @@ def open_dream3d(path: str) -> LabelImage:
             dtype = label_dtype(path, dataset.dtype, name)
             shape = check_shape(path, raw_shape[:3])
             spacing = _geometry(path, h5py, container, shape)
-        except (OSError, KeyError, ValueError, TypeError) as exc:  # a damaged file
+        except InputError:
+            raise
+        except Exception as exc:  # h5py raises many kinds (RuntimeError too) on a damaged file
             raise InputError(path, f"cannot be read as a DREAM.3D file ({exc})") from None
 
     def slabs(depth: int) -> Iterator[np.ndarray]:
         with _open(path, h5py) as file:
-            dataset = file.get(name)
+            try:
+                dataset = file.get(name)
+            except Exception as exc:  # h5py raises many kinds on a damaged file
+                raise InputError(path, f"{name} cannot be read ({exc})") from None
             if not isinstance(dataset, h5py.Dataset) or dataset.shape != raw_shape:
                 raise InputError(path, "the file changed since it was opened")
             for z0, z1 in slabs_of(shape[0], depth):
                 try:
                     slab = dataset[z0:z1, :, :, 0] if len(raw_shape) == 4 else dataset[z0:z1]
-                except (OSError, ValueError) as exc:  # a damaged chunk
+                except Exception as exc:  # h5py raises many kinds on a damaged chunk
                     raise InputError(
                         path, f"{name}: z = {z0} to {z1 - 1} cannot be read ({exc})"
                     ) from None

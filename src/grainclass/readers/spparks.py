@@ -183,11 +183,11 @@ def _last_snapshot(path: str, mm) -> np.ndarray:
 def _column(path: str, table, index: int, dtype, line: int, what: str) -> np.ndarray:
     try:
         values = table[:, index].astype(dtype)
-    except ValueError:
+    except (ValueError, OverflowError):
         for row, token in enumerate(table[:, index]):
             try:
                 np.array([token]).astype(dtype)
-            except ValueError:
+            except (ValueError, OverflowError):
                 raise InputError(path, f"{token[:40]!r}: {what}", line + row) from None
         raise
     if dtype is np.float64 and not np.isfinite(values).all():

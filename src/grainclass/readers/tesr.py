@@ -131,7 +131,7 @@ def _ids(path: str, tokens: list[bytes]) -> np.ndarray | None:
     listed = tokens[start : start + count]
     try:
         ids = np.array([int(t) for t in listed], dtype=np.int64)
-    except ValueError:
+    except (ValueError, OverflowError):
         ids = np.zeros(0, dtype=np.int64)
     if len(ids) != count or count < 0:
         raise InputError(path, f"**cell *id: {count} cell identifiers expected")

@@ -98,6 +98,7 @@ def read_exact(source: str, stream: BinaryIO, offset: int, size: int, what: str)
 def to_labels(source: str, values: np.ndarray, dtype: np.dtype, where: str) -> np.ndarray:
     """Integers read as int64 cast to ``dtype``, or :class:`InputError` for one that it cannot
     hold (a negative one in an unsigned type included)."""
+    dtype = np.dtype(dtype)
     info = np.iinfo(dtype)
     if values.size and (values.min() < info.min or values.max() > info.max):
         bad = values[(values < info.min) | (values > info.max)][0]
