@@ -63,6 +63,7 @@ def write_vti(
     extra_arrays: str = "",
     joint_base64: bool = True,
     spacing=SPACING,
+    block: int = 64,
 ) -> None:
     """A .vti file of ``labels`` ([z, y, x]) in one encoding: ``ascii``, ``binary`` (base64
     inline), ``appended-raw`` or ``appended-base64``."""
@@ -77,7 +78,7 @@ def write_vti(
     ]
     if compressor:
         attributes.append(f'compressor="{compressors.get(compressor, compressor)}"')
-    head, data = vti_payload(values, header, order, compressor)
+    head, data = vti_payload(values, header, order, compressor, block)
     appended = b""
     if encoding == "ascii":
         fmt, text = "ascii", " ".join(str(v) for v in values)

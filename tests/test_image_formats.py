@@ -393,12 +393,27 @@ def test_spparks_default_columns_name_the_spin_type(tmp_path):
         (lambda t: t.replace("\n1 1 0 0 0", "\n1 -1 0 0 0"), ("negative label -1",)),
         (lambda t: t.replace("\n1 1 0 0 0", "\n1 1 0.5 0 0"), ("not equally spaced",)),
         (lambda t: t.replace("\n1 1 0 0 0", "\n1 1 1 0 0"), ("same point",)),
-        (lambda t: t + "ITEM: TIMESTEP\n", ("ITEM: NUMBER OF ATOMS expected",)),
+        (lambda t: t + "ITEM: TIMESTEP\n", ("cut short in the snapshot's header",)),
+        (lambda t: t.replace("NUMBER OF ATOMS", "NUMBER OF SITES"), ("NUMBER OF ATOMS expected",)),
+        (lambda t: t + "1 2 3 4 5\n", ("a line after the snapshot's last site",)),
     ],
 )
 def test_spparks_refused(tmp_path, edit, words):
     text = spparks_snapshot(LABELS, 0, 0.0, range(LABELS.size))
     assert_refused(open_spparks, _dump(tmp_path, edit(text)), *words)
+
+
+@pytest.mark.parametrize("block", [7, 100, 4096])
+def test_spparks_lines_parsed_a_block_at_a_time(tmp_path, monkeypatch, block):
+    from grainclass.readers import spparks
+
+    monkeypatch.setattr(spparks, "_BLOCK", block)
+    text = spparks_snapshot(LABELS, 0, 0.0, np.random.default_rng(2).permutation(LABELS.size))
+    assert_reads_labels(open_spparks(str(_dump(tmp_path, text))))
+    error = assert_refused(open_spparks, _dump(tmp_path, text[: text.rindex("\n", 0, -1)]))
+    assert error.line == 9 + 209
+    error = assert_refused(open_spparks, _dump(tmp_path, text + "\n\n7 1 0 0 0\n"))
+    assert error.line == 222  # 9 header lines, 210 sites, 2 blank lines
 
 
 def test_spparks_cut_short_names_the_line(tmp_path):

@@ -45,6 +45,8 @@ _NUMBER = rb"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?"
 _SPPARKS_STEP = re.compile(rb"\s*\d+\s+" + _NUMBER + rb"\s*")  # "<step> <time>"
 _SPIN_COLUMN = re.compile(rb"^ITEM: ATOMS\b.*\s(i\d+)\b", re.MULTILINE)
 _SPINS = ("i1", "type")
+_BLOCK = 1 << 23  # bytes of site lines parsed at a time
+_LONGEST_VALUE = 32  # characters of the longest number a dump holds ("%g" of a double: 13)
 
 
 def looks_like_spparks(head: bytes) -> bool:
@@ -118,69 +120,105 @@ def _last_snapshot(path: str, mm) -> np.ndarray:
     start = mm.rfind(_MARK)
     if start < 0:
         raise InputError(path, "no ITEM: TIMESTEP: not a SPPARKS dump")
-    lines = _Lines(mm)
-    first = lines.of(start)
-    text = mm[start:]
-    rows = text.split(b"\n")
-    header = [row.strip() for row in rows[:9]]
-
-    def expect(i: int, what: str) -> bytes:
-        if i >= len(header) or (not header[i] and i == len(rows) - 1):
-            raise InputError(path, f"cut short: {what} expected", first + i)
-        return header[i]
-
-    if not expect(2, "ITEM: NUMBER OF ATOMS").startswith(b"ITEM: NUMBER OF ATOMS"):
-        raise InputError(path, f"{header[2][:40]!r}: ITEM: NUMBER OF ATOMS expected", first + 2)
-    try:
-        count = int(expect(3, "the number of sites"))
-    except ValueError:
-        raise InputError(
-            path, f"{header[3][:40]!r}: the number of sites expected", first + 3
-        ) from None
-    if count < 1:
-        raise InputError(path, f"{count} sites", first + 3)
-    if not expect(4, "ITEM: BOX BOUNDS").startswith(b"ITEM: BOX BOUNDS"):
-        raise InputError(path, f"{header[4][:40]!r}: ITEM: BOX BOUNDS expected", first + 4)
-    columns = expect(8, "ITEM: ATOMS").split()
-    if columns[:2] != [b"ITEM:", b"ATOMS"]:
-        raise InputError(path, f"{header[8][:40]!r}: ITEM: ATOMS expected", first + 8)
-    names = [c.decode("ascii", "replace") for c in columns[2:]]
+    first = _Lines(mm).of(start)
+    header, data = _header(path, mm, start, first)
+    count, names = _counts(path, header, first)
     spin = next((names.index(c) for c in _SPINS if c in names), None)
     if spin is None:
         raise InputError(path, f"columns {' '.join(names)}: no spin (i1 or type)", first + 8)
     missing = [axis for axis in "xyz" if axis not in names]
     if missing:
         raise InputError(path, f"columns {' '.join(names)}: no {', '.join(missing)}", first + 8)
-    body = rows[9 : 9 + count]
-    if len(body) < count or (len(rows) == 9 + count and body and not body[-1].strip()):
-        got = len([row for row in body if row.strip()])
-        raise InputError(
-            path, f"cut short: {got} of the snapshot's {count} sites", first + 9 + len(body) - 1
-        )
-    extra = [i for i, row in enumerate(rows[9 + count :]) if row.strip()]
-    if extra:
-        raise InputError(
-            path, "a line after the snapshot's last site", first + 9 + count + extra[0]
-        )
-    width = len(names)
-    tokens = b" ".join(body).split()
-    if len(tokens) != count * width:
-        bad = next(i for i, row in enumerate(body) if len(row.split()) != width)
-        raise InputError(
-            path, f"{len(body[bad].split())} values, {width} columns expected", first + 9 + bad
-        )
-    table = np.array(tokens).reshape(count, width)
-    spins = _column(path, table, spin, np.int64, first + 9, "the spin is not an integer")
+    wanted = [spin, *(names.index(axis) for axis in "xyz")]
+    spins = np.empty(count, dtype=np.int64)
+    where = np.empty((3, count), dtype=np.float64)
+    done = 0
+    for rows in _blocks(path, mm, data, count, first + 9):
+        table = _table(path, rows, len(names), first + 9 + done)
+        line = first + 9 + done
+        spins[done : done + len(rows)] = _column(path, table, spin, np.int64, line, "spin")
+        for axis, index in enumerate(wanted[1:]):
+            values = _column(path, table, index, np.float64, line, "xyz"[axis])
+            where[axis, done : done + len(rows)] = values
+        done += len(rows)
     if spins.min() < np.iinfo(np.int32).min or spins.max() > np.iinfo(np.int32).max:
         raise InputError(path, "a spin past the range of SPPARKS's 32-bit integers")
-    where = [
-        _column(path, table, names.index(axis), np.float64, first + 9, f"{axis} is not a number")
-        for axis in "xyz"
-    ]
-    return _grid(path, spins.astype(np.int32), where)
+    return _grid(path, spins.astype(np.int32), list(where))
 
 
-def _column(path: str, table, index: int, dtype, line: int, what: str) -> np.ndarray:
+def _header(path: str, mm, start: int, first: int) -> tuple[list[bytes], int]:
+    """The snapshot's 9 header lines, stripped, and where its sites start."""
+    header, position = [], start
+    for i in range(9):
+        end = mm.find(b"\n", position)
+        if end < 0:
+            if position >= len(mm) or i < 8:
+                raise InputError(path, "cut short in the snapshot's header", first + i)
+            end = len(mm)
+        header.append(mm[position:end].strip())
+        position = end + 1
+    return header, position
+
+
+def _counts(path: str, header: list[bytes], first: int) -> tuple[int, list[str]]:
+    """The number of sites and the names of the columns, from the header."""
+    for i, item in ((2, b"ITEM: NUMBER OF ATOMS"), (4, b"ITEM: BOX BOUNDS"), (8, b"ITEM: ATOMS")):
+        if not header[i].startswith(item):
+            shown = header[i][:40].decode("latin-1")
+            raise InputError(path, f"{shown!r}: {item.decode()} expected", first + i)
+    try:
+        count = int(header[3])
+    except ValueError:
+        shown = header[3][:40].decode("latin-1")
+        raise InputError(path, f"{shown!r}: the number of sites expected", first + 3) from None
+    if count < 1:
+        raise InputError(path, f"{count} sites", first + 3)
+    return count, [c.decode("ascii", "replace") for c in header[8].split()[2:]]
+
+
+def _blocks(path: str, mm, position: int, count: int, line: int) -> Iterator[list[bytes]]:
+    """The snapshot's site lines, a block of whole lines at a time; :class:`InputError` if
+    there are fewer than ``count`` (the file cut short) or lines after them."""
+    done = 0
+    while done < count:
+        end = mm.find(b"\n", min(position + _BLOCK, len(mm)))
+        end = len(mm) if end < 0 else end
+        rows = mm[position:end].split(b"\n") if position < end else []
+        if end == len(mm) and rows and not rows[-1].strip():
+            rows.pop()  # the file's last line end
+        rows = rows[: count - done]
+        if end >= len(mm) and done + len(rows) < count:
+            raise InputError(
+                path,
+                f"cut short: {done + len(rows)} of the snapshot's {count} sites",
+                line + done + len(rows) - 1,
+            )
+        yield rows
+        done += len(rows)
+        position = end + 1 if done < count else position + len(b"\n".join(rows)) + 1
+    rest = mm[position : position + _BLOCK] if position < len(mm) else b""
+    if rest.strip():
+        extra = len(rest[: len(rest) - len(rest.lstrip())].split(b"\n")) - 1
+        raise InputError(path, "a line after the snapshot's last site", line + count + extra)
+
+
+def _table(path: str, rows: list[bytes], width: int, line: int) -> np.ndarray:
+    """The values of ``rows`` as a (rows, width) array of bytes."""
+    tokens = b" ".join(rows).split()
+    bad = None
+    if len(tokens) != len(rows) * width:
+        bad = next(i for i, row in enumerate(rows) if len(row.split()) != width)
+        found = len(rows[bad].split())
+        raise InputError(path, f"{found} values, {width} columns expected", line + bad)
+    if tokens and max(map(len, tokens)) > _LONGEST_VALUE:  # too wide an array; no number is
+        bad = next(i for i, row in enumerate(rows) if max(map(len, row.split())) > _LONGEST_VALUE)
+        raise InputError(path, f"a value of more than {_LONGEST_VALUE} characters", line + bad)
+    return np.array(tokens).reshape(len(rows), width)
+
+
+def _column(path: str, table, index: int, dtype, line: int, name: str) -> np.ndarray:
+    """Column ``index`` of ``table`` (its first row on ``line``) as ``dtype``."""
+    what = f"the {name} is not an integer" if dtype is np.int64 else f"{name} is not a number"
     try:
         values = table[:, index].astype(dtype)
     except (ValueError, OverflowError):
@@ -188,11 +226,13 @@ def _column(path: str, table, index: int, dtype, line: int, what: str) -> np.nda
             try:
                 np.array([token]).astype(dtype)
             except (ValueError, OverflowError):
-                raise InputError(path, f"{token[:40]!r}: {what}", line + row) from None
-        raise
+                shown = token[:40].decode("latin-1")
+                raise InputError(path, f"{shown!r}: {what}", line + row) from None
+        raise InputError(path, what, line) from None
     if dtype is np.float64 and not np.isfinite(values).all():
         row = int(np.flatnonzero(~np.isfinite(values))[0])
-        raise InputError(path, f"{table[row, index]!r}: {what}", line + row)
+        shown = table[row, index][:40].decode("latin-1")
+        raise InputError(path, f"{shown!r}: {what}", line + row)
     return values
 
 

@@ -22,6 +22,7 @@ from grainclass.errors import InputError, MissingDependencyError, OptionError
 
 IMAGES_EXTRA = "pip install 'grainclass[images]'"
 _TOKEN_BLOCK = 1 << 20  # bytes of text read at a time for integers written as text
+_LONGEST_INTEGER = 24  # characters of the longest int64 written with a sign and zeros
 
 
 def require(module: str, what: str) -> ModuleType:
@@ -159,10 +160,14 @@ class TextIntegers:
                 )
         tokens, self.pending = self.pending[:count], self.pending[count:]
         try:
-            values = np.array([int(token) for token in tokens], dtype=np.int64)
+            if tokens and max(map(len, tokens)) > _LONGEST_INTEGER:
+                raise ValueError  # named below; an array of such tokens would be too wide
+            values = np.array(tokens, dtype=bytes).astype(np.int64)
         except (ValueError, OverflowError):
             for i, token in enumerate(tokens):
                 try:
+                    if len(token) > _LONGEST_INTEGER:
+                        raise ValueError
                     np.int64(int(token))
                 except (ValueError, OverflowError):
                     shown = token[:40].decode("ascii", "replace")
@@ -171,7 +176,7 @@ class TextIntegers:
                         f"{self.what}: value {self.read + i + 1} is {shown!r}, not an integer "
                         "label",
                     ) from None
-            raise
+            raise InputError(self.source, f"{self.what}: values that are not integers") from None
         self.read += count
         return values
 
