@@ -129,6 +129,14 @@ def _last_snapshot(path: str, mm) -> np.ndarray:
     missing = [axis for axis in "xyz" if axis not in names]
     if missing:
         raise InputError(path, f"columns {' '.join(names)}: no {', '.join(missing)}", first + 8)
+    room = (len(mm) - data + 1) // (2 * len(names))  # a value and a blank at least
+    if count > room:
+        raise InputError(
+            path,
+            f"cut short: {count} sites, and the rest of the file holds at most {room} lines of "
+            f"{len(names)} values",
+            first + 3,
+        )
     wanted = [spin, *(names.index(axis) for axis in "xyz")]
     spins = np.empty(count, dtype=np.int64)
     where = np.empty((3, count), dtype=np.float64)

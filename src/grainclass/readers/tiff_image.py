@@ -17,6 +17,8 @@ tifffile cannot read. The TIFF carries no voxel size grainclass reads: spacing i
 
 from __future__ import annotations
 
+import os
+import struct
 from collections.abc import Iterator
 
 import numpy as np
@@ -25,6 +27,7 @@ from grainclass.errors import InputError
 from grainclass.readers.label_image import LabelImage
 from grainclass.readers.voxels import check_shape, checked_slab, label_dtype, require, slabs_of
 
+_MOST_TAGS = 4096  # tifffile's bound on the tags of a page
 _MAGIC = (b"II*\x00", b"MM\x00*", b"II+\x00", b"MM\x00+")  # classic TIFF and BigTIFF
 
 
@@ -65,6 +68,7 @@ def open_tiff(path: str) -> LabelImage:
         Without tifffile.
     """
     tifffile = require("tifffile", "TIFF stacks")
+    _check_page_chain(path)
     try:
         with tifffile.TiffFile(path) as tif:
             layout = _layout(path, tif)
@@ -78,6 +82,41 @@ def open_tiff(path: str) -> LabelImage:
         yield from _slabs(path, shape, depth)
 
     return LabelImage(path, shape, dtype, None, slabs)
+
+
+def _check_page_chain(path: str) -> None:
+    """:class:`InputError` if the file's chain of pages (each IFD's offset to the next) comes
+    back to a page it has passed: tifffile 2026.3.3 follows such a loop without end once it
+    is past 100 pages."""
+    with open(path, "rb") as stream:
+        head = stream.read(16)
+        order = {b"II": "<", b"MM": ">"}.get(head[:2])
+        if order is None or len(head) < 16:
+            return  # tifffile says what is wrong
+        version = struct.unpack(order + "H", head[2:4])[0]
+        if version == 42:
+            offset, count, entry, pointer = struct.unpack(order + "I", head[4:8])[0], "H", 12, "I"
+        elif version == 43:
+            offset, count, entry, pointer = struct.unpack(order + "Q", head[8:16])[0], "Q", 20, "Q"
+        else:
+            return
+        count, pointer = order + count, order + pointer
+        size = os.fstat(stream.fileno()).st_size
+        seen: set[int] = set()
+        while 0 < offset < size:
+            if offset in seen:
+                raise InputError(path, f"a TIFF whose chain of pages loops back to byte {offset}")
+            seen.add(offset)
+            stream.seek(offset)
+            data = stream.read(struct.calcsize(count))
+            if len(data) < struct.calcsize(count):
+                return
+            tags = struct.unpack(count, data)[0]
+            stream.seek(offset + len(data) + tags * entry)
+            data = stream.read(struct.calcsize(pointer))
+            if tags > _MOST_TAGS or len(data) < struct.calcsize(pointer):
+                return
+            offset = struct.unpack(pointer, data)[0]
 
 
 def _layout(path: str, tif) -> tuple[tuple[int, int, int], np.dtype, str]:
