@@ -137,6 +137,15 @@ def test_dream3d_refused(tmp_path, options, words):
     assert_refused(open_dream3d, path, *words)
 
 
+def test_dream3d_spacing_named_resolution_before_6_5(tmp_path):
+    path = tmp_path / "old.dream3d"
+    write_dream3d(path)
+    with h5py.File(path, "r+") as file:
+        geometry = file["DataContainers/ImageDataContainer/_SIMPL_GEOMETRY"]
+        geometry.move("SPACING", "RESOLUTION")
+    assert open_dream3d(str(path)).spacing == SPACING
+
+
 def test_dream3d_not_hdf5(tmp_path):
     path = tmp_path / "bad.dream3d"
     path.write_bytes(b"\x89HDF\r\n\x1a\n" + bytes(200))
@@ -184,6 +193,23 @@ def test_vti_takes_the_one_integer_array(tmp_path):
     path = tmp_path / "one.vti"
     other = '<DataArray type="Float32" Name="phase" format="ascii">' + " 0.5" * 210 + "</DataArray>"
     write_vti(path, LABELS, "ascii", name="grains", extra_arrays=other)
+    assert_reads_labels(open_vti(str(path)))
+
+
+def test_vti_appended_arrays_each_at_its_offset(tmp_path):
+    # A float cell array first, the labels after it: the offsets count from the "_".
+    path = tmp_path / "two.vti"
+    write_vti(path, LABELS.astype(np.uint16), "appended-raw", header="UInt64")
+    data = path.read_bytes()
+    phase = np.full(LABELS.size, 0.5, dtype="<f4").tobytes()
+    head = np.array([len(phase)], dtype="<u8").tobytes()
+    first = '<DataArray type="Float32" Name="phase" format="appended" offset="0"/>\n'
+    data = data.replace(
+        b'format="appended" offset="0"', f'format="appended" offset="{8 + len(phase)}"'.encode()
+    )
+    data = data.replace(b"<DataArray", first.encode() + b"      <DataArray", 1)
+    data = data.replace(b"\n   _", b"\n   _" + head + phase, 1)
+    path.write_bytes(data)
     assert_reads_labels(open_vti(str(path)))
 
 
@@ -236,6 +262,7 @@ def _vti_with(tmp_path, old: bytes, new: bytes, **options) -> Path:
         (b"</Piece>", b'</Piece><Piece Extent="0 7 0 6 0 5"></Piece>', {}, ("2 pieces",)),
         (b"vtkZLibDataCompressor", b"vtkLZ4DataCompressor", {"compressor": "zlib"}, ("LZ4",)),
         (b'type="ImageData"', b'type="UnstructuredGrid"', {}, ("ImageData",)),
+        (b'Name="material"', b'Name="material" NumberOfComponents="3"', {}, ("3 components",)),
         (b"</AppendedData>", b"", {"encoding": "appended-base64"}, ()),
         (b' Spacing="0.5', b' Spacing="-0.5', {}, ("Spacing",)),
         (b"format=\"ascii\">", b"format=\"ascii\"> 1.5", {"encoding": "ascii"}, ("'1.5'",)),
@@ -479,6 +506,7 @@ def test_each_sniffer_knows_only_its_own_format(tmp_path):
         for name, path in files.items()
     }
     assert found == {name: [name] for name in files}
+    assert looks_like_dream3d(bytes(512) + b"\x89HDF\r\n\x1a\n")  # after a user block
 
 
 @pytest.mark.parametrize("opener", [open_tiff, open_dream3d, open_vti, open_spparks, open_tesr])
