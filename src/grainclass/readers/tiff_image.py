@@ -183,6 +183,12 @@ def _slabs(path: str, shape: tuple[int, int, int], depth: int) -> Iterator[np.nd
                         slab = np.array(volume[z0:z1])
                 except Exception as exc:  # tifffile raises many kinds on a damaged file
                     raise _unreadable(path, exc) from None
+                if slab.size != (z1 - z0) * ny * nx:
+                    raise InputError(
+                        path,
+                        f"pages {z0} to {z1 - 1} hold {slab.size} pixels, "
+                        f"{(z1 - z0) * ny * nx} expected ({ny} x {nx} a page)",
+                    )
                 yield checked_slab(path, slab.reshape(z1 - z0, ny, nx).astype(dtype), z0)
 
 
