@@ -186,7 +186,7 @@ def _slabs(path: str, shape: tuple[int, int, int], depth: int) -> Iterator[np.nd
                 if slab.size != (z1 - z0) * ny * nx:
                     raise InputError(
                         path,
-                        f"pages {z0} to {z1 - 1} hold {slab.size} pixels, "
+                        f"{_pages(z0, z1)} hold {slab.size} pixels, "
                         f"{(z1 - z0) * ny * nx} expected ({ny} x {nx} a page)",
                     )
                 yield checked_slab(path, slab.reshape(z1 - z0, ny, nx).astype(dtype), z0)
@@ -206,3 +206,8 @@ def _volume(path: str, tif, series, shape: tuple[int, int, int], how: str) -> np
             )
         return np.memmap(path, dtype=dtype, mode="r", offset=series.dataoffset, shape=shape)
     return series.asarray().reshape(shape)
+
+
+def _pages(z0: int, z1: int) -> str:
+    """Pages z0 .. z1 - 1 in words."""
+    return f"page {z0}" if z1 == z0 + 1 else f"pages {z0} to {z1 - 1}"
