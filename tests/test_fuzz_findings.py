@@ -11,7 +11,8 @@ import pytest
 ROOT = Path(__file__).resolve().parent.parent
 FINDINGS = ROOT / "tests" / "data" / "fuzz" / "findings"
 FORMATS = {".txt": "adjacency", ".loops": "loops", ".pc": "planar_code", ".voro": "voro",
-           ".tess": "neper", ".fe": "evolver", ".npy": "npy"}  # fmt: skip
+           ".tess": "neper", ".fe": "evolver", ".tif": "tiff", ".dream3d": "dream3d",
+           ".vti": "vti", ".dump": "spparks", ".tesr": "tesr", ".npy": "npy"}  # fmt: skip
 
 
 def _fuzz():

@@ -16,7 +16,20 @@ FAMILIES = ("stacked", "flag", "sc")
 CLASSES = ("stacked", "flag", "flag+1", "flag+1+1", "flag+2", "flag>=3", "sc", "sc+1", "sc>=2")
 
 # Formats of grain inputs (sniffed when not named).
-INPUT_FORMATS = ("adjacency", "planar_code", "evolver", "voro", "neper", "loops", "npy")
+INPUT_FORMATS = (
+    "adjacency",
+    "planar_code",
+    "evolver",
+    "voro",
+    "neper",
+    "loops",
+    "npy",
+    "tiff",
+    "dream3d",
+    "vti",
+    "spparks",
+    "tesr",
+)
 
 # Formats of summaries and type tables.
 OUTPUT_FORMATS = ("text", "csv", "markdown", "latex", "json", "parquet")

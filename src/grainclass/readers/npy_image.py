@@ -18,7 +18,7 @@ from collections.abc import Iterator
 import numpy as np
 
 from grainclass.errors import InputError
-from grainclass.readers.label_image import LabelImage, in_memory
+from grainclass.readers.label_image import LabelImage, check_shape, in_memory
 
 NPY_MAGIC = b"\x93NUMPY"
 ZIP_MAGIC = b"PK\x03\x04"
@@ -123,9 +123,7 @@ def _open_npy(path: str) -> LabelImage:
         raise InputError(
             path, f"cut short: {size} bytes, but its header promises {expected} ({shape} {dtype})"
         )
-    nz, ny, nx = shape
-    if nz * ny * nx == 0:
-        raise InputError(path, f"an empty image ({nz} x {ny} x {nx} voxels)")
+    nz, ny, nx = check_shape(path, shape)
     if fortran:  # z varies fastest on disk: a slab is strided, read through a memory map
         voxels = np.memmap(path, dtype=dtype, mode="r", offset=offset, shape=shape, order="F")
 
@@ -182,6 +180,5 @@ def _open_npz(path: str) -> LabelImage:
         raise InputError(path, f"cannot read this .npz archive: {exc}") from None
     except ValueError as exc:
         raise InputError(path, f"cannot read this .npz archive: {exc}") from None
-    if labels.size == 0:
-        raise InputError(path, "an empty image ({} x {} x {} voxels)".format(*labels.shape))
+    check_shape(path, labels.shape)
     return in_memory(path, labels)

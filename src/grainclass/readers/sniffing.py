@@ -11,6 +11,7 @@ from __future__ import annotations
 import re
 
 from grainclass.readers.neper import looks_like_neper
+from grainclass.readers.spparks import looks_like_spparks
 from grainclass.readers.voro import looks_like_voro
 
 SNIFF_BYTES = 4096  # the first bytes of an input that name its format
@@ -108,6 +109,12 @@ def points_kind(head: bytes) -> str | None:
 
     >>> points_kind(b"ITEM: TIMESTEP\\n0\\n"), points_kind(b"cube\\t1 2 3 4;0 4 5 2\\n")
     ('a LAMMPS dump of points', None)
+
+    A SPPARKS site dump looks like a LAMMPS dump, but holds a label image, not points: it is
+    left alone (:func:`grainclass.readers.spparks.looks_like_spparks`).
+
+    >>> points_kind(b"ITEM: TIMESTEP\\n0    3.03846\\nITEM: NUMBER OF ATOMS\\n8\\n") is None
+    True
     >>> points_kind(b"1 0.5 0.25 0.125\\n2 0.1 0.2 0.3\\n")
     "Voro++'s input of points"
     """
@@ -121,7 +128,7 @@ def points_kind(head: bytes) -> str | None:
     if not lines:
         return None
     if lines[0].startswith(b"ITEM:"):
-        return "a LAMMPS dump of points"
+        return None if looks_like_spparks(head) else "a LAMMPS dump of points"
     if re.fullmatch(rb"\d+", lines[0]) and len(lines) >= 3:
         extended = re.search(rb"\b(Lattice|Properties)=", lines[1])
         if extended or all(_XYZ_ATOM.fullmatch(line) for line in lines[2:]):
