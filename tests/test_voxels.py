@@ -187,6 +187,26 @@ def test_voxels_relabelling_keeps_the_types():
     assert [r["weinberg"] for r in plain] == [r["weinberg"] for r in shifted]
 
 
+def test_voxels_labels_past_the_tables_keep_their_values():
+    """Labels past MAX_LABEL, as a Potts run's site ids (and past int32): the rows of the same
+    image with small labels, under the large labels, in their order; the background and
+    --components's label column by their values too."""
+    labels = nearest_seed(np.random.default_rng(4).random((30, 3)), 28)
+    values = np.arange(31, dtype=np.int64) * (1 << 34) + 5  # labels 1..30 -> values[1..30]
+    plain = rows(labels, periodic="xyz")
+    large = rows(values[labels], periodic="xyz")
+    assert [values[int(r["grain_id"])] for r in plain] == [int(r["grain_id"]) for r in large]
+    assert [r["weinberg"] for r in plain] == [r["weinberg"] for r in large]
+    assert [r["voxels"] for r in plain] == [r["voxels"] for r in large]
+    without = rows(values[labels], periodic="xyz", background=[int(values[1])])
+    assert [int(r["grain_id"]) for r in without] == values[2:].tolist()
+    assert sum(r["boundary"] for r in without) == sum(
+        r["boundary"] for r in rows(labels, periodic="xyz", background=[1])
+    )
+    pieces = rows(values[labels], periodic="xyz", components=True)
+    assert sorted(int(r["label"]) for r in pieces) == values[1:].tolist()
+
+
 def test_voxels_read_dataset_reads_an_npy_file(tmp_path):
     path = tmp_path / "bcc.npy"
     np.save(path, _bcc_image())

@@ -27,7 +27,8 @@ from grainclass.options import ReadOptions
 from grainclass.readers.label_image import LabelImage, in_memory
 
 MAX_LABEL = (1 << 26) - 1
-"""Labels index dense tables (17 bytes per label and thread): a larger label is refused."""
+"""Labels index dense tables (17 bytes per label and thread): an image with a larger label is
+read with its labels numbered 0, 1, 2, ... in ascending order (:func:`compact_labels`)."""
 
 MAX_GRAINS = 1 << 21
 """Three grain indices make one int64 key."""
@@ -62,8 +63,11 @@ class ImageTopology:
     column_count: np.ndarray  # int64 (C,): lattice edges with them
 
 
-def check_slab(image: LabelImage, slab: np.ndarray) -> np.ndarray:
-    """A slab's labels as int32, refused where they are no labels grainclass takes."""
+class LabelsPastTables(InputError):
+    """A label larger than :data:`MAX_LABEL`: the image is to be read with compact labels."""
+
+
+def _check_labels(image: LabelImage, slab: np.ndarray) -> None:
     if slab.dtype.kind not in "iu" or slab.dtype.itemsize > 8:
         raise InputError(
             image.source,
@@ -71,13 +75,52 @@ def check_slab(image: LabelImage, slab: np.ndarray) -> np.ndarray:
         )
     if slab.size and slab.dtype.kind == "i" and slab.min() < 0:
         raise InputError(image.source, f"a negative label ({int(slab.min())}): labels are >= 0")
+
+
+def check_slab(image: LabelImage, slab: np.ndarray) -> np.ndarray:
+    """A slab's labels as int32, refused where they are no labels grainclass takes
+    (:class:`LabelsPastTables` for one larger than :data:`MAX_LABEL`)."""
+    _check_labels(image, slab)
     if slab.size and int(slab.max()) > MAX_LABEL:
-        raise InputError(
-            image.source,
-            f"label {int(slab.max())} is larger than grainclass takes ({MAX_LABEL}): "
-            "number the grains 0, 1, 2, ... (or from 1)",
-        )
+        raise LabelsPastTables(image.source, f"label {int(slab.max())} is larger than {MAX_LABEL}")
     return np.ascontiguousarray(slab, dtype=np.int32)
+
+
+def compact_labels(
+    image: LabelImage, background: Sequence[int]
+) -> tuple[LabelImage, np.ndarray, list[int]]:
+    """The image with each label replaced by its rank among the image's labels, the labels in
+    ascending order (rank -> label), and the background's ranks.
+
+    A Potts run that starts every site with its own spin (SPPARKS's ``set site unique``)
+    keeps labels up to its number of sites, past what the dense per-label tables index; its
+    grains are few. This reads the image once more: once for its labels, then ranked slab by
+    slab as the pass reads it.
+    """
+    values = None
+    for slab in image.slabs(SLAB_DEPTH):
+        _check_labels(image, slab)
+        found = np.unique(slab)
+        values = found if values is None else np.union1d(values, found)
+    if values is None:
+        raise InputError(image.source, "an image without voxels")
+    if len(values) > MAX_GRAINS + len(background):
+        raise InputError(
+            image.source, f"{len(values)} labels: grainclass takes at most {MAX_GRAINS} grains"
+        )
+
+    def slabs(depth: int) -> Iterator[np.ndarray]:
+        for slab in image.slabs(depth):
+            yield np.searchsorted(values, slab).astype(np.int32)
+
+    ranked = LabelImage(
+        image.source, image.shape, np.dtype(np.int32), image.spacing, slabs, image.periodic
+    )
+    at = np.searchsorted(values, [b for b in background if b >= 0])
+    ranks = [
+        int(r) for r, b in zip(at, background, strict=False) if r < len(values) and values[r] == b
+    ]
+    return ranked, values, ranks
 
 
 class _Tables:
@@ -575,6 +618,21 @@ def read_image(image: LabelImage, options: ReadOptions) -> Iterator[GrainBatch]:
     """
     periodic = _as_flags(options.periodic, image)
     background: Sequence[int] = options.background
+    try:
+        yield from _read_image(image, options, periodic, background, None)
+    except LabelsPastTables:  # raised before any batch: the whole image is read first
+        image, values, background = compact_labels(image, background)
+        yield from _read_image(image, options, periodic, background, values)
+
+
+def _read_image(
+    image: LabelImage,
+    options: ReadOptions,
+    periodic: tuple[int, int, int],
+    background: Sequence[int],
+    values: np.ndarray | None,
+) -> Iterator[GrainBatch]:
+    """:func:`read_image` of an image whose label ``r`` is ``values[r]`` (None: itself)."""
     original = None
     if options.components:
         from grainclass.components import connected_pieces
@@ -583,7 +641,11 @@ def read_image(image: LabelImage, options: ReadOptions) -> Iterator[GrainBatch]:
         pieces, original = connected_pieces(whole, periodic, background)
         image = in_memory(image.source, pieces, image.spacing, image.periodic)
         background = (0,)
+    if values is not None and original is not None:
+        original = values[original]
     topology = image_topology(image, periodic, background)
+    if values is not None and original is None:
+        topology = dataclasses.replace(topology, labels=values[topology.labels])
     spacing = options.spacing or image.spacing
     for batch in image_batches(topology, options.chunk_size, spacing):
         if original is not None:
