@@ -24,8 +24,14 @@ A step called from one place is compiled into its caller (``@njit(inline="always
 function of its own, numba would optimise it again inside every kernel that links it, compile
 it once more for each literal constant it is first called with, and, called per line or per
 facet, be handed every array of its named tuples anew, each as several scalars. The loops over
-lines and facets run in kernels that allocate nothing (``njit_leaf``), so that the arrays they
-touch are not reference-counted.
+lines and over facets' sides (``tokenize._tokenize_file``, ``tables._fill_sides``,
+``tables._edge_ends``, ``slots._slots``) hand their steps (``njit_leaf``, compiled into the
+loop) the arrays one by one, as views made in the loop's own kernel (``_numba.borrowed``): a
+view's reference counting compiles away only in the kernel that makes it, and a named tuple
+handed to a step would have each of its arrays counted up and down on every line or side. Such a
+kernel stores through those views only: numba's dead-code pass, which runs after an inlined
+``borrowed()``, drops a store through an array it cannot trace to an argument (one from an
+unpacked named tuple, or a view kept in a named tuple).
 
 A body's surface is built from *patches*, one per entry of its list of facets: in a periodic
 file a body may list a facet twice, once each way, where the cell meets its own image across

@@ -120,25 +120,26 @@ def _noted(slow):
     return SlowNumbers(slow.entry[:k], slow.slot[:k], slow.start[:k], slow.end[:k], slow.count)
 
 
-@njit_leaf
+@njit
 def _slow_number(slow, entry, slot, s, e):
-    """Note a number left to Python's float(): token ``buf[s:e]``, for ``slot`` of ``entry``."""
-    k = slow.count[0]
-    slow.entry[k], slow.slot[k], slow.start[k], slow.end[k] = entry, slot, s, e
-    slow.count[0] = k + 1
+    """Note a number left to Python's float(): token ``buf[s:e]``, for ``slot`` of ``entry``
+    (``slow``: a :class:`SlowNumbers`' arrays, in its order)."""
+    entry_of, slot_of, start, end, count = slow
+    k = count[0]
+    entry_of[k], slot_of[k], start[k], end[k] = entry, slot, s, e
+    count[0] = k + 1
 
 
 @njit_leaf
-def _vertex_entry(buf, tokens, ntok, n, entries, slow):
-    """A vertex line's coordinates (tokens 1 to 3) into ``entries.xyz[n]``."""
-    status = entries.status
+def _vertex_entry(buf, starts, ends, ntok, n, status, xyz, slow):
+    """A vertex line's coordinates (tokens 1 to 3) into ``xyz[n]``."""
     if ntok < 4:
         status[n] = ENTRY_BAD
         return
     for k in range(3):
-        s, e = tokens.starts[k + 1], tokens.ends[k + 1]
+        s, e = starts[k + 1], ends[k + 1]
         code, value = _parse_float(buf, s, e)
-        entries.xyz[n, k] = value
+        xyz[n, k] = value
         if code == ENTRY_BAD:
             status[n] = ENTRY_BAD
         elif code == ENTRY_SLOW and status[n] != ENTRY_BAD:
@@ -147,47 +148,43 @@ def _vertex_entry(buf, tokens, ntok, n, entries, slow):
 
 
 @njit_leaf
-def _edge_entry(buf, tokens, ntok, n, periodic, marker, entries):
-    """An edge line: tail and head ids, three wrap marks (a periodic file's), the triple-line
-    mark (``marker``'s words among the attributes)."""
-    starts, ends = tokens.starts, tokens.ends
+def _edge_entry(buf, starts, ends, ntok, n, periodic, marker, status, first, last, wraps, flag):
+    """An edge line: tail and head ids into ``first`` and ``last``, three wrap marks (a
+    periodic file's), the triple-line mark (``marker``'s words among the attributes)."""
     ok_t, tail = _parse_int(buf, starts[1], ends[1]) if ntok > 1 else (False, 0)
     ok_h, head = _parse_int(buf, starts[2], ends[2]) if ntok > 2 else (False, 0)
-    entries.first[n], entries.last[n] = tail, head
-    wraps = entries.wraps
+    first[n], last[n] = tail, head
     wraps[n, 0] = wraps[n, 1] = wraps[n, 2] = 0
     if not (ok_t and ok_h):
-        entries.status[n] = ENTRY_BAD
+        status[n] = ENTRY_BAD
     elif periodic and ntok >= 6 and _wrap_mark(buf, starts[3], ends[3]) < 2:
         for k in range(3):
             mark = _wrap_mark(buf, starts[3 + k], ends[3 + k])
             if mark == 2:
-                entries.status[n] = ENTRY_BAD
+                status[n] = ENTRY_BAD
             else:
                 wraps[n, k] = mark
-    words = marker.ends.shape[0]
+    words = marker[1].shape[0]
     if ntok > 4 and words > 0:
         for t in range(3, ntok - words + 1):
-            if _words_at(buf, tokens, t, marker):
-                entries.flag[n] = 1
+            if _words_at(buf, starts, ends, t, marker):
+                flag[n] = 1
                 break
 
 
 @njit_leaf
-def _list_entry(buf, tokens, ntok, n, body, entries, m, slow):
-    """A facet's line, or a body's if ``body``: its signed ids into ``entries.ids[m:]`` (three
-    or more for a facet, one or more for a body), and a body's ``volume``. Returns ``m`` after
-    the ids."""
-    status = entries.status
-    entries.first[n] = m
-    ok, m = _leading_ids(buf, tokens, ntok, entries.ids, m)
-    entries.last[n] = m
-    if not ok or m - entries.first[n] < (1 if body else 3):
+def _list_entry(buf, starts, ends, ntok, n, body, status, first, last, xyz, flag, ids, m, slow):
+    """A facet's line, or a body's if ``body``: its signed ids into ``ids[m:]`` (three or more
+    for a facet, one or more for a body), and a body's ``volume``. Returns ``m`` after the
+    ids."""
+    first[n] = m
+    ok, m = _leading_ids(buf, starts, ends, ntok, ids, m)
+    last[n] = m
+    if not ok or m - first[n] < (1 if body else 3):
         status[n] = ENTRY_BAD
     if not body:
         return m
-    entries.xyz[n, 0] = np.nan
-    starts, ends = tokens.starts, tokens.ends
+    xyz[n, 0] = np.nan
     for t in range(1, ntok):
         if _word_is(buf, starts[t], ends[t], _W_VOLUME):
             if t + 1 >= ntok:
@@ -198,8 +195,8 @@ def _list_entry(buf, tokens, ntok, n, body, entries, m, slow):
                 # An expression (`volume 2*pi*rad^3/3`), which Surface Evolver evaluates and
                 # grainclass does not: the volume is computed from the geometry instead.
                 break
-            entries.xyz[n, 0] = value
-            entries.flag[n] = 1
+            xyz[n, 0] = value
+            flag[n] = 1
             if code == ENTRY_SLOW and status[n] != ENTRY_BAD:
                 status[n] = ENTRY_SLOW
                 _slow_number(slow, n, SLOW_VOLUME, starts[t + 1], ends[t + 1])
@@ -208,12 +205,12 @@ def _list_entry(buf, tokens, ntok, n, body, entries, m, slow):
 
 
 @njit_leaf
-def _leading_ids(buf, tokens, ntok, ids, m):
+def _leading_ids(buf, starts, ends, ntok, ids, m):
     """The signed ids at the start of tokens 1.. of an entry into ``ids`` from ``m``: ``(ok,
     m after them)``. What follows them must be an attribute's name; a token that is neither
     (``13.0``, ``+``, ``x7`` is a name) makes the line unreadable."""
     for t in range(1, ntok):
-        s, e = tokens.starts[t], tokens.ends[t]
+        s, e = starts[t], ends[t]
         ok, value = _parse_int(buf, s, e)
         if ok:
             ids[m] = value
@@ -247,15 +244,17 @@ def _wrap_mark(buf, s, e):
 
 
 @njit_leaf
-def _words_at(buf, tokens, t, marker):
-    """Whether tokens ``t, t + 1, ...`` are the marker's words, in any case."""
+def _words_at(buf, starts, ends, t, marker):
+    """Whether tokens ``t, t + 1, ...`` are the marker's words, in any case (``marker``: a
+    :class:`TripleMarker`'s arrays)."""
+    letters, word_ends = marker
     begin = 0
-    for w in range(marker.ends.shape[0]):
-        s, e = tokens.starts[t + w], tokens.ends[t + w]
-        if e - s != marker.ends[w] - begin:
+    for w in range(word_ends.shape[0]):
+        s, e = starts[t + w], ends[t + w]
+        if e - s != word_ends[w] - begin:
             return False
         for i in range(e - s):
-            if _lower(buf[s + i]) != marker.letters[begin + i]:
+            if _lower(buf[s + i]) != letters[begin + i]:
                 return False
-        begin = marker.ends[w]
+        begin = word_ends[w]
     return True

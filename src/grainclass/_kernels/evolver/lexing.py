@@ -9,7 +9,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from grainclass._numba import at, njit_leaf
+from grainclass._numba import at, njit, njit_leaf
 
 SPACE, TAB, NEWLINE, RETURN, HASH, SLASH, STAR, BACKSLASH = 32, 9, 10, 13, 35, 47, 42, 92
 PLUS, MINUS, DOT, UNDERSCORE, ZERO, NINE, COLON = 43, 45, 46, 95, 48, 57, 58
@@ -35,12 +35,12 @@ class LineTokens(NamedTuple):
     """int64[1]: the number of the physical line reached (from 1)"""
 
 
-@njit_leaf
+@njit
 def _lower(c):
     return c + 32 if 65 <= c <= 90 else c
 
 
-@njit_leaf
+@njit
 def _word_is(buf, s, e, word):
     """Whether ``buf[s:e]`` is ``word`` (lower case) in any case."""
     if e - s != word.shape[0]:
@@ -59,7 +59,7 @@ def _after_break(buf, p, end):
     return p + 1
 
 
-@njit_leaf
+@njit
 def _line_end(buf, p, end):
     """The first line break from ``p`` on (or ``end``)."""
     while p < end and _CLASS[buf[p]] != C_BREAK:
@@ -67,7 +67,7 @@ def _line_end(buf, p, end):
     return p
 
 
-@njit_leaf
+@njit
 def _continues(buf, p, end):
     """Whether a backslash before ``p`` continues its line: only blanks, or a // comment, follow
     it on the line."""
@@ -78,7 +78,7 @@ def _continues(buf, p, end):
     return buf[p] == SLASH and p + 1 < end and buf[p + 1] == SLASH
 
 
-@njit_leaf
+@njit
 def _comment_at(buf, p, end, last_close):
     """Whether a comment starts at ``p``: ``//``, or a ``/*`` that closes."""
     if p + 1 >= end or buf[p] != SLASH:
@@ -86,7 +86,7 @@ def _comment_at(buf, p, end, last_close):
     return buf[p + 1] == SLASH or (buf[p + 1] == STAR and p + 2 <= last_close)
 
 
-@njit_leaf
+@njit
 def _special(buf, p, end, last_close):
     """Whether the byte at ``p`` is not part of a token: a blank, a line break, a comment's
     start, or a backslash that joins its line to the next."""
@@ -101,16 +101,16 @@ def _special(buf, p, end, last_close):
 
 
 @njit_leaf
-def _lex_line(buf, p, end, last_close, tokens):
-    """The tokens of the logical line at ``p`` into ``tokens``: ``(p after it, tokens, its first
-    line number, at end of file)``; ``tokens.line[0]`` counts physical lines.
+def _lex_line(buf, p, end, last_close, starts, ends, line):
+    """The tokens of the logical line at ``p`` into ``starts`` and ``ends`` (a
+    :class:`LineTokens`' arrays): ``(p after it, tokens, its first line number, at end of
+    file)``; ``line[0]`` counts physical lines.
 
     Comments are left out: ``/* ... */`` (one that closes: its ``*/`` is at ``last_close`` or
     before), whose line breaks still end lines; ``//`` to the end of the line; a line that
     starts with ``#`` (a directive). A comment separates tokens. A backslash ending a line joins
     the next one to it.
     """
-    line = tokens.line
     ntok = 0
     first = line[0]
     line_start = True
@@ -131,8 +131,8 @@ def _lex_line(buf, p, end, last_close, tokens):
                 if k >= C_BLANK or (k >= C_SLASH and _special(buf, p, end, last_close)):
                     break
                 p += 1
-            tokens.starts[ntok] = start
-            tokens.ends[ntok] = p
+            starts[ntok] = start
+            ends[ntok] = p
             ntok += 1
         elif k == C_SLASH and buf[p + 1] == SLASH:  # a // comment
             p = _line_end(buf, p, end)
@@ -160,7 +160,7 @@ def _lex_line(buf, p, end, last_close, tokens):
     return p, ntok, first, True
 
 
-@njit_leaf
+@njit
 def _last_close(buf, start, end):
     """Where the last ``*/`` of ``buf[start:end]`` starts (``start - 1`` if none)."""
     for p in range(end - 2, start - 1, -1):
@@ -169,7 +169,7 @@ def _last_close(buf, start, end):
     return start - 1
 
 
-@njit_leaf
+@njit
 def _count_breaks(buf, start, end):
     n = 0
     for p in range(start, end):

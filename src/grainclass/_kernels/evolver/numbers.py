@@ -17,7 +17,7 @@ from grainclass._kernels.evolver.lexing import (
     _lower,
     _word_is,
 )
-from grainclass._numba import njit_leaf
+from grainclass._numba import njit, njit_leaf
 
 LONGEST_ID = 18  # decimal digits: past them an id does not fit int64
 
@@ -54,7 +54,9 @@ def _parse_int(buf, s, e):
     return True, -value if negative else value
 
 
-@njit_leaf
+# A call of its own, not compiled into the tokenizer's loop: inlined at its two places there
+# it took twice as long to compile (28 s against 14) for 3% less time tokenizing.
+@njit
 def _parse_float(buf, s, e):
     """``(status, value)`` of a number token, as Python's float() reads it: ENTRY_OK where the
     value is certain to be float()'s (a sign, digits with a point, an exponent, up to 19
@@ -126,7 +128,7 @@ def _parse_float(buf, s, e):
     return ENTRY_OK, sign * (float(mantissa) / _POWERS[-exponent])
 
 
-@njit_leaf
+@njit
 def _is_number(buf, s, e):
     """What the periods rows must be: ``[-+]?(\\d+\\.?\\d*|\\.\\d+)([eE][-+]?\\d+)?``."""
     p = s

@@ -10,7 +10,7 @@ from typing import NamedTuple
 import numpy as np
 
 from grainclass._kernels.evolver.codes import ENTRY_OK
-from grainclass._numba import njit, njit_leaf
+from grainclass._numba import borrowed, njit, njit_leaf
 
 
 class IdMap(NamedTuple):
@@ -62,6 +62,13 @@ def _new_map(n, most):
 def _slot(table, x, insert):
     """The slot of id ``x``, or -1 if it has none and ``insert`` is False."""
     keys, slots, count, direct = table
+    return _slot_at(keys, slots, count, direct, x, insert)
+
+
+@njit_leaf
+def _slot_at(keys, slots, count, direct, x, insert):
+    """:func:`_slot` on an :class:`IdMap`'s arrays one by one: a loop over ids hands them as
+    borrowed views (see ``tables._fill_sides``)."""
     if 0 <= x < direct.shape[0]:
         if direct[x] < 0 and insert:
             direct[x] = count[0]
@@ -89,8 +96,10 @@ def _slots(ids, room):
         most = max(most, ids[i])
     table = _new_map(room, most)
     slot = np.empty(ids.shape[0], np.int64)
+    keys, slots, count = borrowed(table.keys), borrowed(table.slots), borrowed(table.count)
+    direct = borrowed(table.direct)
     for i in range(ids.shape[0]):
-        slot[i] = _slot(table, ids[i], True)
+        slot[i] = _slot_at(keys, slots, count, direct, ids[i], True)
     return table, slot
 
 

@@ -11,8 +11,8 @@ from typing import NamedTuple
 import numpy as np
 
 from grainclass._kernels.evolver.codes import BODY, EDGE, ENTRY_OK, FACET, VERTEX
-from grainclass._kernels.evolver.slots import Defined, IdMap, _defined, _slot, _slots
-from grainclass._numba import njit, njit_leaf
+from grainclass._kernels.evolver.slots import Defined, IdMap, _defined, _slot, _slot_at, _slots
+from grainclass._numba import borrowed, njit, njit_leaf
 
 
 class Edges(NamedTuple):
@@ -171,18 +171,22 @@ def _rows_by_kind(kind, f0, f1):
     return rows
 
 
-@njit(inline="always")
+@njit
 def _edge_ends(edge_entry, entries, vertex_map):
     """The keys of each edge's tail and head (-1: the edge is not defined). Edges may name
-    vertices without a line: they get keys past the vertices' slots."""
+    vertices without a line: they get keys past the vertices' slots. (The map's arrays are
+    handed on as borrowed views, as in :func:`_fill_sides`.)"""
     ne = edge_entry.shape[0]
     tail = np.full(ne, -1, np.int64)
     head = np.full(ne, -1, np.int64)
+    first, last = borrowed(entries.first), borrowed(entries.last)
+    keys, slots = borrowed(vertex_map.keys), borrowed(vertex_map.slots)
+    count, direct = borrowed(vertex_map.count), borrowed(vertex_map.direct)
     for s in range(ne):
         i = edge_entry[s]
         if i >= 0:
-            tail[s] = _slot(vertex_map, entries.first[i], True)
-            head[s] = _slot(vertex_map, entries.last[i], True)
+            tail[s] = _slot_at(keys, slots, count, direct, first[i], True)
+            head[s] = _slot_at(keys, slots, count, direct, last[i], True)
     return tail, head
 
 
@@ -241,52 +245,69 @@ def _sides(facet_entry, entries, edges):
     return sides, state
 
 
-@njit_leaf
+@njit
 def _fill_sides(facet_entry, entries, edges, sides, state):
-    """The sides and state of each facet that has a line."""
+    """The sides and state of each facet that has a line.
+
+    The loop hands the arrays to :func:`_facet_sides` as borrowed views made here (see
+    :func:`~grainclass._numba.borrowed`): named tuples handed on would have each of their
+    arrays counted up and down for every facet."""
+    ids, first = borrowed(entries.ids), borrowed(entries.first)
+    keys, slots = borrowed(edges.map.keys), borrowed(edges.map.slots)
+    count, direct = borrowed(edges.map.count), borrowed(edges.map.direct)
+    defined, ends = borrowed(edges.entry), (borrowed(edges.tail), borrowed(edges.head))
+    wrap = borrowed(edges.wrap)
+    start, facet, edge = borrowed(sides.start), borrowed(sides.facet), borrowed(sides.edge)
+    edge_id, sign, tail = borrowed(sides.edge_id), borrowed(sides.sign), borrowed(sides.tail)
+    tail_shift, edge_shift = borrowed(sides.tail_shift), borrowed(sides.edge_shift)
     for s in range(facet_entry.shape[0]):
         i = facet_entry[s]
         if i >= 0:
-            state[s] = _facet_sides(s, entries.ids, entries.first[i], edges, sides)
+            state[s] = _facet_sides(
+                s, ids, first[i], keys, slots, count, direct, defined, ends[0], ends[1], wrap,
+                start, facet, edge, edge_id, sign, tail, tail_shift, edge_shift,
+            )  # fmt: skip
 
 
 @njit_leaf
-def _facet_sides(s, ids, first, edges, sides):
-    """The sides of facet slot ``s``, whose line lists ``ids[first:]``: returns its state."""
-    a = sides.start[s]
-    size = sides.start[s + 1] - a
+def _facet_sides(
+    s, ids, first, keys, slots, count, direct, defined, edge_tail, edge_head, wrap, start,
+    facet, edge, edge_id, sign, tail, tail_shift, edge_shift,
+):  # fmt: skip
+    """The sides of facet slot ``s``, whose line lists ``ids[first:]``: returns its state.
+    Handed the arrays of the edges' :class:`~.slots.IdMap`, of :class:`Edges` (``defined``:
+    its ``entry``) and of :class:`Sides`."""
+    a = start[s]
+    size = start[s + 1] - a
     for k in range(size):
         signed = ids[first + k]
-        sides.facet[a + k] = s
-        sides.edge_id[a + k] = abs(signed)
-        sides.sign[a + k] = -1 if signed < 0 else 1
-        es = _slot(edges.map, abs(signed), False)
-        if es >= 0 and edges.entry[es] >= 0:
-            sides.edge[a + k] = es
+        facet[a + k] = s
+        edge_id[a + k] = abs(signed)
+        sign[a + k] = -1 if signed < 0 else 1
+        es = _slot_at(keys, slots, count, direct, abs(signed), False)
+        if es >= 0 and defined[es] >= 0:
+            edge[a + k] = es
     for k in range(size):
-        if sides.edge[a + k] < 0:
+        if edge[a + k] < 0:
             return 1 + k
     # Walk around the facet, adding up the wrap marks: each side's place in the facet's frame.
     cx, cy, cz = 0, 0, 0
     for k in range(size):
-        es = sides.edge[a + k]
-        forward = sides.sign[a + k] > 0
-        sides.tail[a + k] = edges.tail[es] if forward else edges.head[es]
-        sides.tail_shift[a + k, 0], sides.tail_shift[a + k, 1] = cx, cy
-        sides.tail_shift[a + k, 2] = cz
-        wx, wy, wz = edges.wrap[es, 0], edges.wrap[es, 1], edges.wrap[es, 2]
+        es = edge[a + k]
+        forward = sign[a + k] > 0
+        tail[a + k] = edge_tail[es] if forward else edge_head[es]
+        tail_shift[a + k, 0], tail_shift[a + k, 1], tail_shift[a + k, 2] = cx, cy, cz
+        wx, wy, wz = wrap[es, 0], wrap[es, 1], wrap[es, 2]
         if forward:
-            sides.edge_shift[a + k, 0], sides.edge_shift[a + k, 1] = cx, cy
-            sides.edge_shift[a + k, 2] = cz
+            edge_shift[a + k, 0], edge_shift[a + k, 1], edge_shift[a + k, 2] = cx, cy, cz
             cx, cy, cz = cx + wx, cy + wy, cz + wz
         else:
             cx, cy, cz = cx - wx, cy - wy, cz - wz
-            sides.edge_shift[a + k, 0], sides.edge_shift[a + k, 1] = cx, cy
-            sides.edge_shift[a + k, 2] = cz
+            edge_shift[a + k, 0], edge_shift[a + k, 1], edge_shift[a + k, 2] = cx, cy, cz
     for k in range(size):
-        es = sides.edge[a + k]
-        head = edges.head[es] if sides.sign[a + k] > 0 else edges.tail[es]
-        if head != sides.tail[a + (k + 1) % size]:
+        es = edge[a + k]
+        head = edge_head[es] if sign[a + k] > 0 else edge_tail[es]
+        if head != tail[a + (k + 1) % size]:
             return -1 - ((k + 1) % size)
     if cx != 0 or cy != 0 or cz != 0:
         return -1 - size

@@ -56,7 +56,7 @@ from grainclass._kernels.evolver.numbers import (
     _parse_float,
     _parse_int,
 )
-from grainclass._numba import njit, njit_leaf
+from grainclass._numba import borrowed, njit
 
 # The keywords a line may start with: a section's (the kind of its entries), then the others.
 KEY_OTHER, KEY_PERIODS, KEY_READ, KEY_STRING, KEY_SIMPLEX, KEY_SYMMETRY = -1, 4, 5, 6, 7, 8
@@ -138,7 +138,6 @@ def _tokenize(buf, file_starts, marker):
         np.zeros(n_files, np.int64),
         np.zeros(n_files, np.int64),
     )
-    out = Tokens(entries, slow, files)
     longest = 0
     for f in range(n_files):
         longest = max(longest, file_starts[f + 1] - file_starts[f])
@@ -147,79 +146,120 @@ def _tokenize(buf, file_starts, marker):
         np.empty(longest // 2 + 2, np.int64),
         np.ones(1, np.int64),
     )
-    filled = np.zeros(2, np.int64)  # entries, ids
+    n, m = 0, 0
     for f in range(n_files):
-        _tokenize_file(buf, file_starts, f, marker, tokens, out, filled)
-    return Tokens(_first_entries(entries, filled[0], filled[1]), _noted(slow), files)
+        files.entry_start[f] = n
+        n, m, read = _tokenize_file(
+            buf, file_starts[f], file_starts[f + 1], marker, tokens, entries, slow, f,
+            files.periods[f], n, m,
+        )  # fmt: skip
+        files.entry_end[f] = n
+        files.status[f], files.line[f] = read.status, read.line
+        files.aux[f, 0], files.aux[f, 1], files.aux[f, 2] = read.aux
+        files.periodic[f], files.facets_line[f] = read.periodic, read.facets_line
+    return Tokens(_first_entries(entries, n, m), _noted(slow), files)
 
 
-@njit_leaf
-def _tokenize_file(buf, file_starts, f, marker, tokens, out, filled):
-    """File ``f`` into ``out``: its entries and their ids after the ``filled`` ones, which it
-    counts in; its status and periods."""
-    entries, slow, files = out
-    n, m = filled[0], filled[1]
-    start, end = file_starts[f], file_starts[f + 1]
-    if end - start >= 3 and buf[start] == 0xEF and buf[start + 1] == 0xBB:
-        start += 3 if buf[start + 2] == 0xBF else 0
-    last_close = _last_close(buf, start, end)
-    tokens.line[0] = 1
-    files.entry_start[f] = n
+class FileRead(NamedTuple):
+    """What :func:`_tokenize_file` tells of a file, for :class:`Files`."""
+
+    status: int
+    line: int
+    aux: tuple[int, int, int]
+    periodic: bool
+    facets_line: int
+
+
+@njit
+def _tokenize_file(buf, start, end, marker, tokens, entries, slow, f, periods, n, m):
+    """File ``f``, ``buf[start:end]``, into ``entries`` from row ``n`` on (its ids from ``m``)
+    and ``slow``, its periods into ``periods`` (float64[3, 3]). Returns ``(n, m)`` after its
+    entries and ids, and a :class:`FileRead`.
+
+    The steps per line are compiled into it (``njit_leaf``) and handed borrowed views of the
+    arrays (:func:`~grainclass._numba.borrowed`), made here, which are not reference-counted:
+    a named tuple's arrays, or views handed in as arguments, would be counted up and down on
+    every line. Its stores go through those views only: after an inlined ``borrowed()`` numba
+    drops dead code, and with it a store through a named tuple's array that nothing reads
+    later."""
+    text = borrowed(buf)
+    starts, ends, line = borrowed(tokens.starts), borrowed(tokens.ends), borrowed(tokens.line)
+    kind, ident, line_of = borrowed(entries.kind), borrowed(entries.id), borrowed(entries.line)
+    status, flag = borrowed(entries.status), borrowed(entries.flag)
+    first, last, ids = borrowed(entries.first), borrowed(entries.last), borrowed(entries.ids)
+    xyz, wraps = borrowed(entries.xyz), borrowed(entries.wraps)
+    noted = (
+        borrowed(slow.entry), borrowed(slow.slot), borrowed(slow.start), borrowed(slow.end),
+        borrowed(slow.count),
+    )  # fmt: skip
+    words = (borrowed(marker.letters), borrowed(marker.ends))
+    code, where, aux = FILE_OK, 0, (0, 0, 0)
+    periodic = False
+    facets_line = 0
+    if end - start >= 3 and text[start] == 0xEF and text[start + 1] == 0xBB:
+        start += 3 if text[start + 2] == 0xBF else 0
+    last_close = _last_close(text, start, end)
+    line[0] = 1
     p = start
     section = -1
     header = Header(0, 3, 0, 2, 0, 0, 0)
     header_checked = False
     eof = False
     while not eof:
-        p, ntok, number, eof = _lex_line(buf, p, end, last_close, tokens)
+        p, ntok, number, eof = _lex_line(text, p, end, last_close, starts, ends, line)
         if ntok == 0:
             continue
-        s0, e0 = tokens.starts[0], tokens.ends[0]
-        if section >= 0 and _is_decimal(buf, s0, e0):
+        s0, e0 = starts[0], ends[0]
+        if section >= 0 and _is_decimal(text, s0, e0):
             if e0 - s0 > LONGEST_ID:
-                files.status[f], files.line[f] = FILE_LONG_ID, number
-                files.aux[f, 0], files.aux[f, 1], files.aux[f, 2] = section, s0, e0
+                code, where, aux = FILE_LONG_ID, number, (section, s0, e0)
                 break
-            _, value = _parse_int(buf, s0, e0)
-            entries.kind[n], entries.id[n], entries.line[n] = section, value, number
-            entries.status[n], entries.flag[n] = ENTRY_OK, 0
+            _, value = _parse_int(text, s0, e0)
+            kind[n], ident[n], line_of[n] = section, value, number
+            status[n], flag[n] = ENTRY_OK, 0
             if section == VERTEX:
-                _vertex_entry(buf, tokens, ntok, n, entries, slow)
+                _vertex_entry(text, starts, ends, ntok, n, status, xyz, noted)
             elif section == EDGE:
-                _edge_entry(buf, tokens, ntok, n, files.periodic[f], marker, entries)
+                _edge_entry(
+                    text, starts, ends, ntok, n, periodic, words, status, first, last, wraps,
+                    flag,
+                )  # fmt: skip
             else:
-                m = _list_entry(buf, tokens, ntok, n, section == BODY, entries, m, slow)
+                m = _list_entry(
+                    text, starts, ends, ntok, n, section == BODY, status, first, last, xyz,
+                    flag, ids, m, noted,
+                )  # fmt: skip
             n += 1
             continue
-        word = _keyword(buf, s0, e0)
+        word = _keyword(text, s0, e0)
         if 0 <= word <= KEY_PERIODS and not header_checked:
             header_checked = True
-            code, where, aux = _header_status(header)
+            code, where, kept = _header_status(header)
             if code != FILE_OK:
-                files.status[f], files.line[f], files.aux[f, 0] = code, where, aux
+                aux = (kept, 0, 0)
                 break
         if word == KEY_PERIODS:
             if eof:
                 break
-            p, eof, ok, periodic = _periods(buf, p, end, last_close, tokens, f, files, slow)
+            p, eof, ok, rows = _periods(
+                text, p, end, last_close, starts, ends, line, f, periods, noted
+            )
             if not ok:
-                files.status[f], files.line[f] = FILE_PERIODS, number
+                code, where = FILE_PERIODS, number
                 break
-            if periodic:
-                files.periodic[f] = True
+            periodic |= rows
         elif 0 <= word <= BODY:
             section = word
-            if section == FACET and files.facets_line[f] == 0:
-                files.facets_line[f] = number
+            if section == FACET and facets_line == 0:
+                facets_line = number
         elif word == KEY_READ:
             break
         elif not header_checked:
-            header = _header_line(header, word, number, buf, tokens, ntok)
-    files.entry_end[f] = n
-    filled[0], filled[1] = n, m
+            header = _header_line(header, word, number, text, starts, ends, ntok)
+    return n, m, FileRead(code, where, aux, periodic, facets_line)
 
 
-@njit_leaf
+@njit
 def _keyword(buf, s, e):
     """The keyword that token ``buf[s:e]`` is, in any case: a section's (its entries' kind),
     another KEY_, or KEY_OTHER. Surface Evolver takes a section's keyword with a colon too
@@ -251,39 +291,39 @@ def _keyword(buf, s, e):
     return KEY_OTHER
 
 
-@njit_leaf
-def _periods(buf, p, end, last_close, tokens, f, files, slow):
-    """The rows after a ``periods`` line at ``p``, into ``files.periods[f]``: the next three
-    lines with tokens, whatever they hold, or those up to the end of the file; their first nine
-    tokens are the numbers. Returns ``(p after them, at end of file, whether they are nine
-    numbers, whether the file is periodic)``: a file that ends in blank lines before its third
-    row keeps its numbers but is not made periodic."""
+@njit
+def _periods(buf, p, end, last_close, starts, ends, line, f, periods, slow):
+    """The rows after a ``periods`` line at ``p`` of file ``f``, into ``periods`` (its 3 x 3):
+    the next three lines with tokens, whatever they hold, or those up to the end of the file;
+    their first nine tokens are the numbers. Returns ``(p after them, at end of file, whether
+    they are nine numbers, whether the file is periodic)``: a file that ends in blank lines
+    before its third row keeps its numbers but is not made periodic."""
     rows = 0
     values = 0
     numbers = True
     while True:
-        p, ntok, _, eof = _lex_line(buf, p, end, last_close, tokens)
+        p, ntok, _, eof = _lex_line(buf, p, end, last_close, starts, ends, line)
         if ntok == 0:
             if eof:
                 return p, eof, numbers and values == 9, False
             continue
         for t in range(min(ntok, 9 - values)):
-            s, e = tokens.starts[t], tokens.ends[t]
+            s, e = starts[t], ends[t]
             if not _is_number(buf, s, e):
                 numbers = False
             else:
                 code, value = _parse_float(buf, s, e)
                 if code == ENTRY_SLOW:
                     _slow_number(slow, f, SLOW_PERIOD + values, s, e)
-                files.periods[f, values // 3, values % 3] = value
+                periods[values // 3, values % 3] = value
             values += 1
         rows += 1
         if rows == 3 or eof:
             return p, eof, numbers and values == 9, True
 
 
-@njit_leaf
-def _header_line(header, word, number, buf, tokens, ntok):
+@njit
+def _header_line(header, word, number, buf, starts, ends, ntok):
     """``header`` with line ``number`` (keyword ``word``, ``ntok`` tokens) taken in."""
     string_line, space_dim, space_line, surface_dim, surface_line, simplex_line, symmetry_line = (
         header
@@ -295,11 +335,11 @@ def _header_line(header, word, number, buf, tokens, ntok):
     elif word == KEY_SYMMETRY:
         symmetry_line = number
     elif ntok > 1 and word == KEY_SPACE_DIMENSION:
-        ok, value = _parse_int(buf, tokens.starts[1], tokens.ends[1])
+        ok, value = _parse_int(buf, starts[1], ends[1])
         if ok:
             space_dim, space_line = value, number
     elif ntok > 1 and word == KEY_SURFACE_DIMENSION:
-        ok, value = _parse_int(buf, tokens.starts[1], tokens.ends[1])
+        ok, value = _parse_int(buf, starts[1], ends[1])
         if ok:
             surface_dim, surface_line = value, number
     return Header(
@@ -307,7 +347,7 @@ def _header_line(header, word, number, buf, tokens, ntok):
     )
 
 
-@njit_leaf
+@njit
 def _header_status(header):
     """``(FILE_ code, line, aux)`` of a file's header: FILE_OK for a surface in 3-space."""
     string = header.string_line > 0 or header.surface_dim == 1
