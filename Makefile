@@ -55,6 +55,7 @@ demo: voro install
 	$(BIN)/grainclass perturb examples/polytopes.txt --flips 1 --seed 1 -q > /dev/null
 	$(BIN)/grainclass voronoi 200 --seed 1 -o build/demo-voronoi.parquet -q
 	$(BIN)/grainclass classify tests/data/images/spparks/dump.potts20 --periodic xyz -o build/demo-potts.parquet -q
+	$(BIN)/grainclass classify $(GRAIN_GROWTH) -o build/demo-evolver.parquet -q
 	$(BIN)/grainclass voronoi 200 --seed 1 -o build/demo-voronoi.txt -q
 	$(BIN)/grainclass draw build/demo-voronoi.txt --top 4 --flips --trees -o build/demo-draw.svg -q
 
