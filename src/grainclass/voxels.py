@@ -116,10 +116,9 @@ def compact_labels(
     ranked = LabelImage(
         image.source, image.shape, np.dtype(np.int32), image.spacing, slabs, image.periodic
     )
-    at = np.searchsorted(values, [b for b in background if b >= 0])
-    ranks = [
-        int(r) for r, b in zip(at, background, strict=False) if r < len(values) and values[r] == b
-    ]
+    wanted = [int(b) for b in background if int(b) >= 0]
+    at = np.searchsorted(values, wanted)
+    ranks = [int(r) for r, b in zip(at, wanted, strict=True) if r < len(values) and values[r] == b]
     return ranked, values, ranks
 
 
