@@ -146,7 +146,9 @@ def _tokenize(buf, file_starts, marker):
         np.empty(longest // 2 + 2, np.int64),
         np.ones(1, np.int64),
     )
-    n, m = 0, 0
+    # Not the literal 0: numba would compile _tokenize_file once for literal counts and once
+    # more for the int64 counts it returns.
+    n, m = np.int64(0), np.int64(0)
     for f in range(n_files):
         files.entry_start[f] = n
         n, m, read = _tokenize_file(
