@@ -199,7 +199,9 @@ def _list_entry(buf, starts, ends, ntok, n, body, status, first, last, xyz, flag
             flag[n] = 1
             if code == ENTRY_SLOW and status[n] != ENTRY_BAD:
                 status[n] = ENTRY_SLOW
-                _slow_number(slow, n, SLOW_VOLUME, starts[t + 1], ends[t + 1])
+                # An int64, as at the other calls: a literal slot would compile _slow_number
+                # once more.
+                _slow_number(slow, n, np.int64(SLOW_VOLUME), starts[t + 1], ends[t + 1])
             break
     return m
 

@@ -146,7 +146,9 @@ def _tokenize(buf, file_starts, marker):
         np.empty(longest // 2 + 2, np.int64),
         np.ones(1, np.int64),
     )
-    n, m = 0, 0
+    # Not the literal 0: numba would compile _tokenize_file once for literal counts and once
+    # more for the int64 counts it returns.
+    n, m = np.int64(0), np.int64(0)
     for f in range(n_files):
         files.entry_start[f] = n
         n, m, read = _tokenize_file(
@@ -204,9 +206,27 @@ def _tokenize_file(buf, start, end, marker, tokens, entries, slow, f, periods, n
     section = -1
     header = Header(0, 3, 0, 2, 0, 0, 0)
     header_checked = False
+    # The rows after a `periods` line, read here so that _lex_line is compiled at one call
+    # only: the next three lines with tokens, whatever they hold, or those up to the end of
+    # the file; their first nine tokens are the numbers. A file that ends in blank lines
+    # before its third row keeps its numbers but is not made periodic.
+    rows_due, values, numbers, periods_line = 0, 0, True, 0
     eof = False
     while not eof:
         p, ntok, number, eof = _lex_line(text, p, end, last_close, starts, ends, line)
+        if rows_due > 0:
+            if ntok > 0:
+                values, numbers = _period_row(
+                    text, starts, ends, ntok, f, periods, noted, values, numbers
+                )
+                rows_due -= 1
+            if rows_due == 0 or eof:
+                if not (numbers and values == 9):
+                    code, where = FILE_PERIODS, periods_line
+                    break
+                periodic |= ntok > 0
+                rows_due = 0
+            continue
         if ntok == 0:
             continue
         s0, e0 = starts[0], ends[0]
@@ -241,13 +261,7 @@ def _tokenize_file(buf, start, end, marker, tokens, entries, slow, f, periods, n
         if word == KEY_PERIODS:
             if eof:
                 break
-            p, eof, ok, rows = _periods(
-                text, p, end, last_close, starts, ends, line, f, periods, noted
-            )
-            if not ok:
-                code, where = FILE_PERIODS, number
-                break
-            periodic |= rows
+            rows_due, values, numbers, periods_line = 3, 0, True, number
         elif 0 <= word <= BODY:
             section = word
             if section == FACET and facets_line == 0:
@@ -292,34 +306,21 @@ def _keyword(buf, s, e):
 
 
 @njit
-def _periods(buf, p, end, last_close, starts, ends, line, f, periods, slow):
-    """The rows after a ``periods`` line at ``p`` of file ``f``, into ``periods`` (its 3 x 3):
-    the next three lines with tokens, whatever they hold, or those up to the end of the file;
-    their first nine tokens are the numbers. Returns ``(p after them, at end of file, whether
-    they are nine numbers, whether the file is periodic)``: a file that ends in blank lines
-    before its third row keeps its numbers but is not made periodic."""
-    rows = 0
-    values = 0
-    numbers = True
-    while True:
-        p, ntok, _, eof = _lex_line(buf, p, end, last_close, starts, ends, line)
-        if ntok == 0:
-            if eof:
-                return p, eof, numbers and values == 9, False
-            continue
-        for t in range(min(ntok, 9 - values)):
-            s, e = starts[t], ends[t]
-            if not _is_number(buf, s, e):
-                numbers = False
-            else:
-                code, value = _parse_float(buf, s, e)
-                if code == ENTRY_SLOW:
-                    _slow_number(slow, f, SLOW_PERIOD + values, s, e)
-                periods[values // 3, values % 3] = value
-            values += 1
-        rows += 1
-        if rows == 3 or eof:
-            return p, eof, numbers and values == 9, True
+def _period_row(buf, starts, ends, ntok, f, periods, slow, values, numbers):
+    """A row of file ``f``'s periods, its tokens up to the ninth number, into ``periods`` (its
+    3 x 3) after the ``values`` read before. Returns ``(values, numbers)`` after the row:
+    ``numbers`` stays True while every token read is a number."""
+    for t in range(min(ntok, 9 - values)):
+        s, e = starts[t], ends[t]
+        if not _is_number(buf, s, e):
+            numbers = False
+        else:
+            code, value = _parse_float(buf, s, e)
+            if code == ENTRY_SLOW:
+                _slow_number(slow, f, SLOW_PERIOD + values, s, e)
+            periods[values // 3, values % 3] = value
+        values += 1
+    return values, numbers
 
 
 @njit
@@ -334,13 +335,12 @@ def _header_line(header, word, number, buf, starts, ends, ntok):
         simplex_line = number
     elif word == KEY_SYMMETRY:
         symmetry_line = number
-    elif ntok > 1 and word == KEY_SPACE_DIMENSION:
+    elif ntok > 1:
+        # One call of the inlined _parse_int for both dimensions: one copy compiled.
         ok, value = _parse_int(buf, starts[1], ends[1])
-        if ok:
+        if ok and word == KEY_SPACE_DIMENSION:
             space_dim, space_line = value, number
-    elif ntok > 1 and word == KEY_SURFACE_DIMENSION:
-        ok, value = _parse_int(buf, starts[1], ends[1])
-        if ok:
+        elif ok and word == KEY_SURFACE_DIMENSION:
             surface_dim, surface_line = value, number
     return Header(
         string_line, space_dim, space_line, surface_dim, surface_line, simplex_line, symmetry_line
