@@ -110,6 +110,15 @@ def test_npy_image_from_standard_input_is_refused(tmp_path):
     assert "not a pipe" in result.stderr
 
 
+def test_npy_image_named_as_another_format_is_refused_for_what_it_is(tmp_path):
+    path = tmp_path / "grains.npy"
+    np.save(path, _two_grains())
+    result, out = _classify(path, "--input-format", "adjacency")
+    assert result.exit_code == 1
+    assert f"{path}: a label image (npy), not adjacency input" in result.stderr
+    assert not out.exists()
+
+
 def _npy_bytes(array: np.ndarray) -> bytes:
     buffer = io.BytesIO()
     np.save(buffer, array)

@@ -145,8 +145,11 @@ def read_dataset(
         k += 1
         with _open(path) as stream:
             head = stream.peek(SNIFF_BYTES)[:SNIFF_BYTES]
-            if sniff_image(path, head):
+            image = sniff_image(path, head)
+            if image and (path == "-" or _is_stream(path)):
                 raise InputError(path, "a label image: images are read from files, not a pipe")
+            if image:  # a file named as another format: sniffed, it would have been read
+                raise InputError(path, f"a label image ({image}), not {formats[k - 1]} input")
             fmt = formats[k - 1] or sniff(head)
             # Named as a text format or not, UTF-16, a compressed file or a Parquet table is
             # refused for what it is (planar_code is bytes: its records may start like them).
