@@ -27,14 +27,8 @@ from grainclass.cluster import dask_client
 from grainclass.errors import OptionError, OutputError
 from grainclass.parts import DATASET_FILE
 from grainclass.readers.points import read_points
-from grainclass.voronoi_parts import (
-    PartJob,
-    Slabs,
-    _merged,
-    _seed_points,
-    tessellate_in_parts,
-    tessellation_part,
-)
+from grainclass.voronoi_parts import PartJob, _merged, tessellate_in_parts, tessellation_part
+from grainclass.voronoi_slabs import Slabs, seed_points
 
 pytest.importorskip("grainclass._voro")
 
@@ -128,8 +122,7 @@ def test_each_part_draws_the_seeds_of_one_process():
     whole = np.random.default_rng(9).random((3000, 3))
     drawn = {}
     for k in range(4):
-        job = PartJob(k, slabs, 0.0, "", {}, 1.0, seed=9, source="s")
-        part = _seed_points(job, slabs.container(k, 0.05))
+        part = seed_points(slabs, k, 9, "s", slabs.container(k, 0.05))
         drawn.update(zip(part.own.ids.tolist(), map(tuple, part.own.xyz), strict=True))
         assert (whole[part.own_keys] == part.own.xyz).all()
         assert (whole[part.margin_keys, :2] == part.margin_xyz[:, :2]).all()

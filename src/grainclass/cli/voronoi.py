@@ -239,7 +239,8 @@ def _in_parts(
     from grainclass.cli.progress import PartsPrinter, parts_line
     from grainclass.cluster import dask_client
     from grainclass.parts import remove_part_temporaries
-    from grainclass.voronoi_parts import Slabs, default_parts, tessellate_in_parts
+    from grainclass.voronoi_parts import default_parts, tessellate_in_parts
+    from grainclass.voronoi_slabs import Slabs
 
     points = what.get("points")
     n = len(points.xyz) if points is not None else what["n_seeds"]
