@@ -70,7 +70,10 @@ def test_npy_image_classify_writes_a_row_per_label(tmp_path):
         (lambda p: np.save(p, np.ones((4, 4), np.int32)), "a 2D array"),
         (lambda p: np.save(p, np.ones((2, 2, 2, 2), np.int32)), "a 4D array"),
         (lambda p: np.save(p, np.ones((3, 3, 3), np.float32)), "float32"),
-        (lambda p: np.save(p, -np.ones((3, 3, 3), np.int64)), "a negative label (-1)"),
+        (
+            lambda p: np.save(p, -np.ones((3, 3, 3), np.int64)),
+            "negative label -1 at voxel x=0, y=0, z=0",
+        ),
         (lambda p: np.save(p, np.ones((0, 3, 3), np.int32)), "an empty image"),
         (lambda p: p.write_bytes(_npy_bytes(np.ones((8, 8, 8), np.int32))[:-100]), "cut short"),
         (lambda p: p.write_bytes(b"\x93NUMPY\x01\x00garbage"), "not a NumPy .npy file"),

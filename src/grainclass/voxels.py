@@ -24,7 +24,7 @@ from grainclass import parallel
 from grainclass.batch import GrainBatch, offsets_from_counts
 from grainclass.errors import InputError
 from grainclass.options import ReadOptions
-from grainclass.readers.label_image import LabelImage, in_memory
+from grainclass.readers.label_image import LabelImage, checked_slab, in_memory, label_dtype
 from grainclass.voxel_edits import settle
 
 MAX_LABEL = (1 << 26) - 1
@@ -68,20 +68,17 @@ class LabelsPastTables(InputError):
     """A label larger than :data:`MAX_LABEL`: the image is to be read with compact labels."""
 
 
-def _check_labels(image: LabelImage, slab: np.ndarray) -> None:
-    if slab.dtype.kind not in "iu" or slab.dtype.itemsize > 8:
-        raise InputError(
-            image.source,
-            f"its voxels are {slab.dtype}: a label image holds integer grain ids",
-        )
-    if slab.size and slab.dtype.kind == "i" and slab.min() < 0:
-        raise InputError(image.source, f"a negative label ({int(slab.min())}): labels are >= 0")
+def _check_labels(image: LabelImage, slab: np.ndarray, z0: int) -> None:
+    """The checks every image reader makes of its slabs (z from ``z0``), made here too for an
+    image opened otherwise (:func:`~grainclass.readers.label_image.in_memory`)."""
+    label_dtype(image.source, slab.dtype)
+    checked_slab(image.source, slab, z0)
 
 
-def check_slab(image: LabelImage, slab: np.ndarray) -> np.ndarray:
-    """A slab's labels as int32, refused where they are no labels grainclass takes
-    (:class:`LabelsPastTables` for one larger than :data:`MAX_LABEL`)."""
-    _check_labels(image, slab)
+def check_slab(image: LabelImage, slab: np.ndarray, z0: int) -> np.ndarray:
+    """A slab's labels (z from ``z0``) as int32, refused where they are no labels grainclass
+    takes (:class:`LabelsPastTables` for one larger than :data:`MAX_LABEL`)."""
+    _check_labels(image, slab, z0)
     if slab.size and int(slab.max()) > MAX_LABEL:
         raise LabelsPastTables(image.source, f"label {int(slab.max())} is larger than {MAX_LABEL}")
     return np.ascontiguousarray(slab, dtype=np.int32)
@@ -99,8 +96,10 @@ def compact_labels(
     slab as the pass reads it.
     """
     values = None
+    z = 0
     for slab in image.slabs(SLAB_DEPTH):
-        _check_labels(image, slab)
+        _check_labels(image, slab, z)
+        z += len(slab)
         found = np.unique(slab)
         values = found if values is None else np.union1d(values, found)
     if values is None:
@@ -221,7 +220,7 @@ def image_topology(
     z = 0
     try:
         for slab in image.slabs(SLAB_DEPTH):
-            slab = check_slab(image, slab)
+            slab = check_slab(image, slab, z)
             if slab.shape[1:] != (ny, nx):
                 raise InputError(image.source, f"a slab of shape {slab.shape}, not (k, {ny}, {nx})")
             if first_plane is None:
@@ -484,7 +483,11 @@ def _read_image(
     if options.components:
         from grainclass.components import connected_pieces
 
-        whole = np.concatenate([check_slab(image, slab) for slab in image.slabs(SLAB_DEPTH)])
+        slabs, z = [], 0
+        for slab in image.slabs(SLAB_DEPTH):
+            slabs.append(check_slab(image, slab, z))
+            z += len(slab)
+        whole = np.concatenate(slabs)
         pieces, original = connected_pieces(whole, periodic, background)
         image = in_memory(image.source, pieces, image.spacing, image.periodic)
         background = (0,)
