@@ -12,7 +12,7 @@ import sys
 
 import pytest
 
-from conftest import EXAMPLES
+from conftest import EVOLVER_FIXTURES, EXAMPLES
 from grainclass import compilation
 
 needs_jit = pytest.mark.skipif(
@@ -109,6 +109,41 @@ def test_the_validation_first_plan_compiles_what_a_run_with_bad_grains_calls(tmp
     )
     compiled = json.loads(done.stdout)
     assert not {"_classify_batch", "_validate_pending_batch", *FIRST} & set(compiled), compiled
+
+
+THE_RUNS_SHARE = """
+from grainclass.warmup import _runs_share
+_runs_share(types=True)
+"""
+
+
+@needs_jit
+def test_the_evolver_stage_and_the_runs_share_compile_what_a_run_on_evolver_files_calls(tmp_path):
+    """The helper told the Surface Evolver assembly is ahead compiles it, and says so, while
+    the run compiles its share (the fast path, the walk, the general validation), both at once
+    as in a first run: a run reading Evolver files with degenerate grains then compiles the
+    tokenizer but none of those."""
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path / "cache"))
+    helper = subprocess.Popen(
+        [sys.executable, "-m", "grainclass.warmup", "--counting", "--ahead=evolver"],
+        env=env,
+        stdin=subprocess.PIPE,
+        stdout=subprocess.PIPE,
+    )
+    subprocess.run([sys.executable, "-c", THE_RUNS_SHARE], env=env, check=True)
+    said, _ = helper.communicate(b"")  # no plan: counting, it stops after its stages
+    assert (said, helper.returncode) == (b"evolver\n", 0)
+    done = subprocess.run(
+        [sys.executable, "-c", RECORD, str(EVOLVER_FIXTURES / "21000-00000025.fe")],
+        env=env,
+        check=True,
+        capture_output=True,
+    )
+    compiled = json.loads(done.stdout)
+    assert "_tokenize" in compiled  # the run's own first stage
+    assert not {
+        "_assemble", "_classify_batch", "_weinberg_batch", "_validate_pending_batch"
+    } & set(compiled), compiled  # fmt: skip
 
 
 # summarize's counting, recorded as RECORD records classify.
@@ -219,6 +254,7 @@ def _helper_that_listens(monkeypatch, warmup) -> list[bytes]:
     class Helper:
         def __init__(self, *args, **kwargs) -> None:
             self.stdin = Pipe()
+            self.stdout = io.BytesIO()  # it says nothing
 
         def wait(self, timeout=None) -> int:
             return 0
@@ -409,3 +445,130 @@ def test_a_helper_that_cannot_start_leaves_the_run_to_itself(monkeypatch):
         compilation.kernel_compiling()
         ran.append(True)
     assert ran == [True]
+
+
+class _SayingHelper:
+    """A helper process that says what the test writes to its standard output, and keeps the
+    command it was started with."""
+
+    def __init__(self, monkeypatch, warmup) -> None:
+        self.commands: list[list[str]] = []
+        read, self.write = os.pipe()
+        stdout = os.fdopen(read, "rb")
+        outer = self
+
+        class Process:
+            def __init__(self, command, **kwargs) -> None:
+                outer.commands.append(command)
+                self.stdin = io.BytesIO()
+                self.stdout = stdout
+
+            def wait(self, timeout=None) -> int:
+                return 0
+
+            def kill(self) -> None:
+                pass
+
+        monkeypatch.setattr(warmup.subprocess, "Popen", Process)
+
+    def say(self, line: bytes) -> None:
+        os.write(self.write, line)
+
+    def end(self) -> None:
+        os.close(self.write)
+
+
+def test_a_stage_said_ahead_is_the_helpers_and_the_run_waits_for_it_after_its_share(
+    monkeypatch,
+):
+    """A reader says its second stage is ahead before its first kernel compiles: the helper is
+    started with it, and when the reader reaches it the run compiles its own share once, then
+    waits until the helper says the stage is in the cache."""
+    import threading
+
+    import grainclass.warmup as warmup
+
+    helper = _SayingHelper(monkeypatch, warmup)
+    order: list[str] = []
+    shared = threading.Event()
+
+    def share(types: bool) -> None:
+        order.append(f"share types={types}")
+        shared.set()
+
+    def helper_done() -> None:
+        shared.wait(10)
+        order.append("said")
+        helper.say(b"evolver\n")
+
+    monkeypatch.setattr(warmup, "_runs_share", share)
+    with warmup.compiling_from_both_ends(jobs=2, types=True):
+        compilation.ahead(compilation.EVOLVER)
+        compilation.kernel_compiling()  # the tokenizer compiles: a cold cache
+        threading.Thread(target=helper_done).start()
+        compilation.before(compilation.EVOLVER)
+        order.append("assembled")
+        compilation.before(compilation.EVOLVER)  # another group of files: no share, no wait
+        helper.end()
+    assert helper.commands[0][-1] == "--ahead=evolver"
+    assert order == ["share types=True", "said", "assembled"]
+
+
+def test_a_stage_said_once_the_helper_runs_is_the_runs_own(monkeypatch):
+    import grainclass.warmup as warmup
+
+    helper = _SayingHelper(monkeypatch, warmup)
+    monkeypatch.setattr(warmup, "_runs_share", lambda types: pytest.fail("no share"))
+    with warmup.compiling_from_both_ends(jobs=2, types=False):
+        compilation.kernel_compiling()  # another reader's kernel started the helper
+        compilation.ahead(compilation.EVOLVER)
+        compilation.before(compilation.EVOLVER)  # returns at once: the helper never heard
+        helper.end()
+    assert not any(arg.startswith("--ahead") for arg in helper.commands[0])
+    compilation.before(compilation.EVOLVER)  # after the run: no one listens
+
+
+def test_a_helper_that_ends_without_saying_is_not_waited_for(monkeypatch):
+    """It only saves time: killed, or failed, it says nothing more, and the run goes on."""
+    import grainclass.warmup as warmup
+
+    helper = _SayingHelper(monkeypatch, warmup)
+    shares: list[bool] = []
+    monkeypatch.setattr(warmup, "_runs_share", shares.append)
+    with warmup.compiling_from_both_ends(jobs=2, types=False, counting=True):
+        compilation.ahead(compilation.EVOLVER)
+        compilation.kernel_compiling()
+        helper.end()
+        compilation.before(compilation.EVOLVER)
+    assert shares == [False]
+
+
+def test_after_the_general_validation_the_run_waits_for_the_helpers_fast_path(monkeypatch):
+    """With grains the fast path leaves, the run compiles their validation and the helper the
+    fast path; the run then waits for it rather than compile it too."""
+    import threading
+
+    import grainclass.warmup as warmup
+    from grainclass.batch import GrainBatch
+
+    helper = _SayingHelper(monkeypatch, warmup)
+    order: list[str] = []
+    validated = threading.Event()
+
+    def validation_first() -> None:
+        order.append("validation")
+        validated.set()
+
+    def helper_done() -> None:
+        validated.wait(10)
+        order.append("fast")
+        helper.say(b"fast\n")
+
+    monkeypatch.setattr(warmup, "_validation_first", validation_first)
+    threading.Thread(target=helper_done).start()
+    with warmup.compiling_from_both_ends(jobs=2, types=True) as watch:
+        compilation.kernel_compiling()
+        for _ in watch([GrainBatch.from_lists([TWO_GON])]):
+            order.append("batch")
+        helper.end()
+    assert order == ["validation", "fast", "batch"]

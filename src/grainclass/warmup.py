@@ -19,6 +19,14 @@ with grains the fast path surely leaves (their lists do not hold the 6n - 12 ent
 grain's, or one has fewer than three), the run compiles the general validation before its first
 batch while the helper compiles the fast path. Whatever the plan, each kernel is compiled where
 it is called if it is not in the cache yet: the plan only saves time.
+
+Where both would otherwise compile the same kernel at once, the helper says on its standard
+output when it has put a stage in the cache, and the run waits for that rather than compile it
+too: the fast path, which the run needs right after the general validation (``fast``), and a
+reader's second stage, which the reader said was ahead before its first kernel compiled (the
+Surface Evolver assembly, ``evolver``, compiled by the helper while the run compiles the
+tokenizer; the run compiles the fast path, the Weinberg walk and the general validation while
+it waits).
 """
 
 from __future__ import annotations
@@ -43,14 +51,19 @@ PRISM += [list(range(_K)), list(reversed(range(_K)))]
 # What the run tells the helper, one line, at its first batch (nothing: only the fast path).
 GENERAL = b"general\n"  # a grain of more than 64 faces: the general classification too
 VALIDATION = b"validation\n"  # grains the fast path leaves: the run compiles their validation
+# What the helper says on its standard output, a line each, once it is in the cache: a reader's
+# stage said ahead (compilation.EVOLVER), and with the plan VALIDATION the fast path.
+FAST = "fast"
 _STOP_WAIT = 2.0  # seconds the helper may take to finish once the main process is done
 
 
 class _Helper:
-    """The helper process, started at the first kernel compiled while it is wanted, and the
-    plan it is told (written as soon as both the process and the plan are there)."""
+    """The helper process, started at the first kernel compiled while it is wanted, the plan
+    it is told (written as soon as both the process and the plan are there), and what it says
+    it has put in the cache."""
 
     def __init__(self, types: bool, counting: bool) -> None:
+        self.types = types
         self.command = [
             sys.executable,
             "-m",
@@ -62,6 +75,12 @@ class _Helper:
         self.plan: bytes | None = None
         self.done = False  # the run is over: no process is started any more
         self.lock = threading.Lock()
+        self.stages: list[str] = []  # readers' stages said ahead before the process started
+        self.started_with: frozenset[str] = frozenset()  # those the process compiles first
+        self.said: set[str] = set()
+        self.ended = False  # its standard output closed: it says nothing more
+        self.heard = threading.Condition()
+        self.shared = False  # the run's share while the helper compiles a stage is done
 
     def start(self) -> None:
         with self.lock:
@@ -71,13 +90,56 @@ class _Helper:
             # saves time, and the run compiles everything itself.
             with contextlib.suppress(OSError):
                 self.process = subprocess.Popen(
-                    self.command,
+                    self.command + [f"--ahead={stage}" for stage in self.stages],
                     stdin=subprocess.PIPE,
-                    stdout=subprocess.DEVNULL,
+                    stdout=subprocess.PIPE,
                     stderr=subprocess.DEVNULL,
                 )
+            if self.process is None:
+                return
+            self.started_with = frozenset(self.stages)
+            threading.Thread(target=self._listen, daemon=True).start()
             if self.plan is not None:
                 self._write()
+
+    def _listen(self) -> None:
+        """Keep what the helper says until it ends (or is killed)."""
+        stdout = self.process.stdout  # type: ignore[union-attr]
+        try:
+            for line in stdout:
+                with self.heard:
+                    self.said.add(line.decode(errors="replace").strip())
+                    self.heard.notify_all()
+        except (OSError, ValueError):
+            pass
+        finally:
+            stdout.close()
+            with self.heard:
+                self.ended = True
+                self.heard.notify_all()
+
+    def wait_for(self, stage: str) -> None:
+        """Return once the helper says ``stage`` is in the cache, or has ended."""
+        if self.process is None:
+            return
+        with self.heard:
+            self.heard.wait_for(lambda: stage in self.said or self.ended)
+
+    def ahead(self, stage: str) -> None:
+        with self.lock:
+            if stage not in self.stages:
+                self.stages.append(stage)
+
+    def before(self, stage: str) -> None:
+        """A reader's next stage: if the helper compiles it, the run compiles its own share
+        meanwhile (once), then waits for it."""
+        if stage not in self.started_with:
+            return
+        with self.lock:
+            share, self.shared = not self.shared, True
+        if share and stage not in self.said:
+            _runs_share(self.types)
+        self.wait_for(stage)
 
     @property
     def running(self) -> bool:
@@ -132,6 +194,7 @@ def compiling_from_both_ends(
     helper = _Helper(types, counting) if jobs > 1 else None
     if helper is not None:
         compilation.listen(helper.start)
+        compilation.listen_to_stages(helper)
 
     def watch(batches: Iterable[GrainBatch]) -> Iterator[GrainBatch]:
         told = False
@@ -142,6 +205,7 @@ def compiling_from_both_ends(
                 told = True
                 if plan == VALIDATION and helper.running:
                     _validation_first()
+                    helper.wait_for(FAST)
             yield batch
 
     failed = True
@@ -151,6 +215,7 @@ def compiling_from_both_ends(
     finally:
         if helper is not None:
             compilation.stop_listening(helper.start)
+            compilation.stop_listening_to_stages(helper)
             helper.stop(kill=failed)
 
 
@@ -189,40 +254,102 @@ def _validation_first() -> None:
     _validate_pending(batch, out, np.zeros(1, np.int64), MAX_BITSET_FACES, strings=True)
 
 
-def fill_cache(types: bool, plan: Callable[[], bytes], counting: bool = False) -> None:
-    """The helper's work: the kernels ``classify`` calls last, with what ``plan()`` asks for
-    once the Weinberg walk is compiled (see :func:`_last_kernels_first`), then ``classify``
-    itself on a cube (which by then finds its kernels in the cache). When ``counting``, what
-    the plan asks for, then the counting of a cube (the fast path first, as the run needs it
-    after the general validation), or nothing if the plan asks for nothing: the run starts with
-    the fast path itself."""
+def fill_cache(
+    types: bool,
+    plan: Callable[[], bytes],
+    counting: bool = False,
+    ahead: Iterable[str] = (),
+    say: Callable[[str], None] = lambda stage: None,
+) -> None:
+    """The helper's work: the readers' stages ``ahead`` (each ``say``-d once in the cache),
+    then the kernels ``classify`` calls last, with what ``plan()`` asks for once the Weinberg
+    walk is compiled (see :func:`_last_kernels_first`), then ``classify`` itself on a cube
+    (which by then finds its kernels in the cache). When ``counting``, what the plan asks for,
+    then the counting of a cube (the fast path first, as the run needs it after the general
+    validation), or nothing if the plan asks for nothing: the run starts with the fast path
+    itself."""
     from grainclass.batch import GrainBatch
     from grainclass.classification import classify
     from grainclass.summary import tally_batch
 
+    for stage in ahead:
+        if stage == compilation.EVOLVER:
+            _assembly_of_no_files()
+            say(stage)
     batch = GrainBatch.from_lists([CUBE])
     if counting:
         told = plan()
         if told == GENERAL:
             _general_first(GrainBatch.from_lists([PRISM]))
         if told:
+            _fast_path_and_walk(types=False)
+            say(FAST)
             tally_batch(batch)
         return
-    _last_kernels_first(batch, types, plan)
+    _last_kernels_first(batch, types, plan, say)
     classify(batch, types=types)
 
 
+def _assembly_of_no_files() -> None:
+    """The Surface Evolver assembly, on what the tokenizer makes of no files: the argument
+    types the reader calls it with."""
+    import numpy as np
+
+    from grainclass._kernels.evolver.assemble import _assemble
+    from grainclass._kernels.evolver.entries import _first_entries, _new_entries
+    from grainclass._kernels.evolver.tokenize import Files
+
+    entries = _first_entries.py_func(_new_entries.py_func(0, 0), 0, 0)
+    files = Files(
+        np.zeros(0, np.int8),
+        np.zeros(0, np.int64),
+        np.zeros((0, 3), np.int64),
+        np.zeros(0, np.bool_),
+        np.zeros((0, 3, 3), np.float64),
+        np.zeros(0, np.int64),
+        np.zeros(0, np.int64),
+        np.zeros(0, np.int64),
+    )
+    _assemble(entries, files)
+
+
+def _runs_share(types: bool) -> None:
+    """What the run compiles while the helper compiles a reader's stage: what ``classify``
+    calls first, the fast path and the walk (if ``types``), and the general validation, which
+    real data sets mostly need (a Surface Evolver simulation's grains with a degenerate corner,
+    say), and which the run would otherwise compile alone after the stage."""
+    _fast_path_and_walk(types)
+    _validation_first()
+
+
+def _fast_path_and_walk(types: bool) -> None:
+    """The fast path on a cube, and its Weinberg walk if ``types``: the calls ``classify``
+    makes first."""
+    from grainclass._kernels.bits import MAX_BITSET_FACES
+    from grainclass.batch import GrainBatch
+    from grainclass.classification import _classify_csr
+    from grainclass.weinberg_columns import weinberg_types
+
+    batch = GrainBatch.from_lists([CUBE])
+    out = _classify_csr(batch, MAX_BITSET_FACES, strings=True)
+    if types:
+        weinberg_types(batch, out, True)
+
+
 def _last_kernels_first(
-    batch: GrainBatch, types: bool, plan: Callable[[], bytes] = lambda: b""
+    batch: GrainBatch,
+    types: bool,
+    plan: Callable[[], bytes] = lambda: b"",
+    say: Callable[[str], None] = lambda stage: None,
 ) -> None:
     """The Weinberg walk, then what ``plan()`` asks for, then the table's column kernels, on
     made-up outputs of the classification (every grain ok): the calls and argument types of
     ``classify`` itself. The main process needs the general classification (GENERAL) only
     after the fast path and the general validation; when it compiles that validation first
-    (VALIDATION), it needs the fast path next, which the helper then compiles."""
+    (VALIDATION), it needs the fast path next, which the helper then compiles (and ``say``-s)."""
     from grainclass._kernels import codes
     from grainclass.batch import GrainBatch
-    from grainclass.classification import Classified, _table, classify
+    from grainclass.classification import Classified, _table
     from grainclass.weinberg_columns import weinberg_types
 
     out = Classified.empty(batch, strings=True)
@@ -233,7 +360,8 @@ def _last_kernels_first(
     if told == GENERAL:
         _general_first(GrainBatch.from_lists([PRISM]))
     elif told == VALIDATION:
-        classify(GrainBatch.from_lists([CUBE]), types=types)
+        _fast_path_and_walk(types)  # the walk is in the cache by now
+        say(FAST)
     _table(batch, out, walked)
 
 
@@ -250,9 +378,16 @@ def _general_first(batch: GrainBatch) -> None:
     _classify_general(batch, out, np.flatnonzero(out.status == codes.PENDING), strings=True)
 
 
+def _say(stage: str) -> None:
+    sys.stdout.write(stage + "\n")
+    sys.stdout.flush()
+
+
 if __name__ == "__main__":
     fill_cache(
         types="--no-types" not in sys.argv[1:],
         plan=sys.stdin.buffer.readline,
         counting="--counting" in sys.argv[1:],
+        ahead=[a.removeprefix("--ahead=") for a in sys.argv[1:] if a.startswith("--ahead=")],
+        say=_say,
     )

@@ -29,6 +29,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from grainclass import compilation
 from grainclass._kernels.evolver import codes
 from grainclass._kernels.evolver.assemble import Surfaces, _assemble
 from grainclass._kernels.evolver.entries import TripleMarker
@@ -103,6 +104,7 @@ def read_evolver(
         One grain per body: the file's stem when the file has one body, else the body id.
     """
     read = functools.partial(_read_part, triple_edges=triple_edges, geometry=geometry)
+    compilation.ahead(compilation.EVOLVER)
     pending: list[_Part] = []
     grains = 0
     # The kernels release the GIL: the groups of files are read on as many threads as there
@@ -192,6 +194,7 @@ def _read_part(paths: list[str], triple_edges: tuple[str, str], geometry: bool =
         _slow_numbers(buf, tokens)
     for k in refused:
         tokens.files.status[k] = -1
+    compilation.before(compilation.EVOLVER)
     with np.errstate(over="ignore"):  # the ids' hash wraps modulo 2**64 (seen without the JIT)
         grains, surfaces = _assemble(tokens.entries, tokens.files)
     g_file, g_body, g_code, g_params = grains.file, grains.body, grains.code, grains.params
