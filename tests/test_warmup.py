@@ -572,3 +572,27 @@ def test_after_the_general_validation_the_run_waits_for_the_helpers_fast_path(mo
             order.append("batch")
         helper.end()
     assert order == ["validation", "fast", "batch"]
+
+
+# A run that starts the helper and is gone while it compiles, as one killed or stopped by a
+# signal then: it ends without waiting for its helper (whose standard output is the test's).
+GONE_RUN = """
+import os, subprocess, sys, time
+subprocess.Popen(
+    [sys.executable, "-m", "grainclass.warmup", f"--run={os.getpid()}", "--ahead=evolver"],
+    stdin=subprocess.PIPE,
+)
+time.sleep(3)  # the helper compiles by now
+os._exit(0)
+"""
+
+
+@needs_jit
+def test_the_helper_ends_when_the_run_is_gone(tmp_path):
+    """Its work (the Evolver assembly first, 20 s of compilation and more) would keep a core
+    busy for no one: it ends long before it has compiled the assembly, whose line it never says."""
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path / "cache"))
+    gone = subprocess.run(
+        [sys.executable, "-c", GONE_RUN], env=env, stdout=subprocess.PIPE, timeout=120
+    )  # its standard output reaches its end once the helper, which holds it too, has ended
+    assert (gone.returncode, gone.stdout) == (0, b"")

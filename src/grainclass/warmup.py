@@ -32,9 +32,11 @@ it waits).
 from __future__ import annotations
 
 import contextlib
+import os
 import subprocess
 import sys
 import threading
+import time
 from collections.abc import Callable, Iterable, Iterator
 from contextlib import contextmanager
 from typing import TYPE_CHECKING
@@ -55,6 +57,7 @@ VALIDATION = b"validation\n"  # grains the fast path leaves: the run compiles th
 # stage said ahead (compilation.EVOLVER), and with the plan VALIDATION the fast path.
 FAST = "fast"
 _STOP_WAIT = 2.0  # seconds the helper may take to finish once the main process is done
+_PARENT_POLL = 0.2  # seconds between the helper's looks at whether the run is still there
 
 
 class _Helper:
@@ -68,6 +71,7 @@ class _Helper:
             sys.executable,
             "-m",
             "grainclass.warmup",
+            f"--run={os.getpid()}",
             *([] if types else ["--no-types"]),
             *(["--counting"] if counting else []),
         ]
@@ -383,11 +387,27 @@ def _say(stage: str) -> None:
     sys.stdout.flush()
 
 
+def _end_with(run: int) -> None:
+    """End the helper once the run that started it is gone: a run stopped by a signal while
+    kernels compile ends at once (``os._exit``, not waiting for its threads) and a killed one
+    says nothing, and what the helper would go on compiling keeps a core busy for no one."""
+    while os.getppid() == run:
+        time.sleep(_PARENT_POLL)
+    os._exit(0)
+
+
+def _option(name: str) -> list[str]:
+    return [a.removeprefix(name) for a in sys.argv[1:] if a.startswith(name)]
+
+
 if __name__ == "__main__":
+    # The run names itself: it may be gone before this process asks for its parent.
+    run = int(next(iter(_option("--run=")), os.getppid()))
+    threading.Thread(target=_end_with, args=(run,), daemon=True).start()
     fill_cache(
         types="--no-types" not in sys.argv[1:],
         plan=sys.stdin.buffer.readline,
         counting="--counting" in sys.argv[1:],
-        ahead=[a.removeprefix("--ahead=") for a in sys.argv[1:] if a.startswith("--ahead=")],
+        ahead=_option("--ahead="),
         say=_say,
     )
