@@ -543,6 +543,27 @@ def test_a_helper_that_ends_without_saying_is_not_waited_for(monkeypatch):
     assert shares == [False]
 
 
+def test_a_helper_that_hangs_is_waited_for_a_while_only(monkeypatch):
+    """Neither saying nor ending (stopped, say): the run goes on after a while and compiles
+    the stage itself."""
+    import threading
+
+    import grainclass.warmup as warmup
+
+    helper = _SayingHelper(monkeypatch, warmup)
+    monkeypatch.setattr(warmup, "_runs_share", lambda types: None)
+    monkeypatch.setattr(warmup, "_STAGE_WAIT", 0.2)
+    with warmup.compiling_from_both_ends(jobs=2, types=True):
+        compilation.ahead(compilation.EVOLVER)
+        compilation.kernel_compiling()
+        reader = threading.Thread(target=compilation.before, args=(compilation.EVOLVER,))
+        reader.start()
+        reader.join(30)
+        waiting = reader.is_alive()
+        helper.end()
+    assert not waiting
+
+
 def test_after_the_general_validation_the_run_waits_for_the_helpers_fast_path(monkeypatch):
     """With grains the fast path leaves, the run compiles their validation and the helper the
     fast path; the run then waits for it rather than compile it too."""

@@ -58,6 +58,9 @@ VALIDATION = b"validation\n"  # grains the fast path leaves: the run compiles th
 FAST = "fast"
 _STOP_WAIT = 2.0  # seconds the helper may take to finish once the main process is done
 _PARENT_POLL = 0.2  # seconds between the helper's looks at whether the run is still there
+# Seconds the run waits for a stage the helper compiles (the Evolver assembly: 20-35 s on two
+# busy cores) before it compiles the stage itself: a helper that hangs costs time, not the run.
+_STAGE_WAIT = 300.0
 
 
 class _Helper:
@@ -123,11 +126,12 @@ class _Helper:
                 self.heard.notify_all()
 
     def wait_for(self, stage: str) -> None:
-        """Return once the helper says ``stage`` is in the cache, or has ended."""
+        """Return once the helper says ``stage`` is in the cache, or has ended, or after
+        :data:`_STAGE_WAIT` seconds."""
         if self.process is None:
             return
         with self.heard:
-            self.heard.wait_for(lambda: stage in self.said or self.ended)
+            self.heard.wait_for(lambda: stage in self.said or self.ended, _STAGE_WAIT)
 
     def ahead(self, stage: str) -> None:
         with self.lock:
