@@ -610,8 +610,8 @@ os._exit(0)
 
 @needs_jit
 def test_the_helper_ends_when_the_run_is_gone(tmp_path):
-    """Its work (the Evolver assembly first, 20 s of compilation and more) would keep a core
-    busy for no one: it ends long before it has compiled the assembly, whose line it never says."""
+    """Its work (the Evolver assembly first, the longest kernel to compile) would keep a core
+    busy for no one: it ends before it has compiled the assembly, whose line it never says."""
     env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path / "cache"))
     gone = subprocess.run(
         [sys.executable, "-c", GONE_RUN], env=env, stdout=subprocess.PIPE, timeout=120

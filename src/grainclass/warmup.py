@@ -58,8 +58,8 @@ VALIDATION = b"validation\n"  # grains the fast path leaves: the run compiles th
 FAST = "fast"
 _STOP_WAIT = 2.0  # seconds the helper may take to finish once the main process is done
 _PARENT_POLL = 0.2  # seconds between the helper's looks at whether the run is still there
-# Seconds the run waits for a stage the helper compiles (the Evolver assembly: 20-35 s on two
-# busy cores) before it compiles the stage itself: a helper that hangs costs time, not the run.
+# Seconds the run waits for a stage the helper compiles, many times what one takes, before it
+# compiles the stage itself: a helper that hangs costs time, never the run.
 _STAGE_WAIT = 300.0
 
 
