@@ -477,6 +477,26 @@ class _SayingHelper:
     def end(self) -> None:
         os.close(self.write)
 
+    def says_after(self, order: list, step: str, stage: str):
+        """A stand-in for the run's ``step`` that notes its call (with its arguments) in
+        ``order``; once it has run, the helper notes ``stage`` and says it."""
+        import threading
+
+        ran = threading.Event()
+
+        def helper_done() -> None:
+            ran.wait(10)
+            order.append(stage)
+            self.say(stage.encode() + b"\n")
+
+        threading.Thread(target=helper_done).start()
+
+        def stand_in(*args) -> None:
+            order.append((step, *args))
+            ran.set()
+
+        return stand_in
+
 
 def test_a_stage_said_ahead_is_the_helpers_and_the_run_waits_for_it_after_its_share(
     monkeypatch,
@@ -484,34 +504,21 @@ def test_a_stage_said_ahead_is_the_helpers_and_the_run_waits_for_it_after_its_sh
     """A reader says its second stage is ahead before its first kernel compiles: the helper is
     started with it, and when the reader reaches it the run compiles its own share once, then
     waits until the helper says the stage is in the cache."""
-    import threading
-
     import grainclass.warmup as warmup
 
     helper = _SayingHelper(monkeypatch, warmup)
-    order: list[str] = []
-    shared = threading.Event()
-
-    def share(types: bool) -> None:
-        order.append(f"share types={types}")
-        shared.set()
-
-    def helper_done() -> None:
-        shared.wait(10)
-        order.append("said")
-        helper.say(b"evolver\n")
-
+    order: list = []
+    share = helper.says_after(order, "share", compilation.EVOLVER)
     monkeypatch.setattr(warmup, "_runs_share", share)
     with warmup.compiling_from_both_ends(jobs=2, types=True):
         compilation.ahead(compilation.EVOLVER)
         compilation.kernel_compiling()  # the tokenizer compiles: a cold cache
-        threading.Thread(target=helper_done).start()
         compilation.before(compilation.EVOLVER)
         order.append("assembled")
         compilation.before(compilation.EVOLVER)  # another group of files: no share, no wait
         helper.end()
     assert helper.commands[0][-1] == "--ahead=evolver"
-    assert order == ["share types=True", "said", "assembled"]
+    assert order == [("share", True), "evolver", "assembled"]
 
 
 def test_a_stage_said_once_the_helper_runs_is_the_runs_own(monkeypatch):
@@ -567,32 +574,19 @@ def test_a_helper_that_hangs_is_waited_for_a_while_only(monkeypatch):
 def test_after_the_general_validation_the_run_waits_for_the_helpers_fast_path(monkeypatch):
     """With grains the fast path leaves, the run compiles their validation and the helper the
     fast path; the run then waits for it rather than compile it too."""
-    import threading
-
     import grainclass.warmup as warmup
     from grainclass.batch import GrainBatch
 
     helper = _SayingHelper(monkeypatch, warmup)
-    order: list[str] = []
-    validated = threading.Event()
-
-    def validation_first() -> None:
-        order.append("validation")
-        validated.set()
-
-    def helper_done() -> None:
-        validated.wait(10)
-        order.append("fast")
-        helper.say(b"fast\n")
-
+    order: list = []
+    validation_first = helper.says_after(order, "validation", warmup.FAST)
     monkeypatch.setattr(warmup, "_validation_first", validation_first)
-    threading.Thread(target=helper_done).start()
     with warmup.compiling_from_both_ends(jobs=2, types=True) as watch:
         compilation.kernel_compiling()
         for _ in watch([GrainBatch.from_lists([TWO_GON])]):
             order.append("batch")
         helper.end()
-    assert order == ["validation", "fast", "batch"]
+    assert order == [("validation",), "fast", "batch"]
 
 
 # A run that starts the helper and is gone while it compiles, as one killed or stopped by a
